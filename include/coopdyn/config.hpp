@@ -1,0 +1,102 @@
+/// \file
+/// \brief Common types and compile-time size helpers shared by every coopdyn header.
+///
+/// Sizes follow MODEL.md section 0: the object and N end-effectors make N + 1 bodies; stacked
+/// twists, accelerations and wrenches have 6(N + 1) entries, the end-effector part alone 6N.
+/// `Eigen::Dynamic` (N chosen at run time) passes through every helper unchanged.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cassert>
+
+namespace coopdyn {
+
+/// Index type used for arm numbers and sizes (Eigen's signed index).
+using Index = Eigen::Index;
+
+/// Marker for "number of arms chosen at run time".
+inline constexpr int Dynamic = Eigen::Dynamic;
+
+/// 6 * n, or Eigen::Dynamic when n is Eigen::Dynamic.
+constexpr int times_six(int n) noexcept { return n == Eigen::Dynamic ? Eigen::Dynamic : 6 * n; }
+
+/// 3 * n, or Eigen::Dynamic when n is Eigen::Dynamic.
+constexpr int times_three(int n) noexcept { return n == Eigen::Dynamic ? Eigen::Dynamic : 3 * n; }
+
+/// Number of rows of the end-effector stack h' = [h_1; ...; h_N]: 6N.
+constexpr int end_effector_stack_size(int arms) noexcept { return times_six(arms); }
+
+/// Number of rows of the full stack h = [h_o; h_1; ...; h_N]: 6(N + 1).
+constexpr int full_stack_size(int arms) noexcept
+{
+    return arms == Eigen::Dynamic ? Eigen::Dynamic : 6 * (arms + 1);
+}
+
+template <typename Scalar> using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+template <typename Scalar> using Vector4 = Eigen::Matrix<Scalar, 4, 1>;
+template <typename Scalar> using Vector6 = Eigen::Matrix<Scalar, 6, 1>;
+template <typename Scalar> using Matrix3 = Eigen::Matrix<Scalar, 3, 3>;
+template <typename Scalar> using Matrix6 = Eigen::Matrix<Scalar, 6, 6>;
+template <typename Scalar> using Quaternion = Eigen::Quaternion<Scalar>;
+
+/// Stacked end-effector quantity, 6N (twists, wrenches, setpoint accelerations).
+template <typename Scalar, int Arms>
+using EndEffectorVector = Eigen::Matrix<Scalar, end_effector_stack_size(Arms), 1>;
+
+/// Stacked quantity of all N + 1 bodies, 6(N + 1) (accelerations, hSigma, interaction wrenches).
+template <typename Scalar, int Arms>
+using FullStackVector = Eigen::Matrix<Scalar, full_stack_size(Arms), 1>;
+
+/// One 3-vector per arm, side by side: 3 x N (grasp offsets r_i, positions).
+template <typename Scalar, int Arms> using PerArmVector3 = Eigen::Matrix<Scalar, 3, Arms>;
+
+/// One quaternion per arm, coefficients (x, y, z, w) side by side: 4 x N.
+template <typename Scalar, int Arms> using PerArmQuaternion = Eigen::Matrix<Scalar, 4, Arms>;
+
+/// Per-arm 6x6 matrices side by side: 6 x 6N (end-effector inertias M_i, dampings, stiffnesses).
+template <typename Scalar, int Arms>
+using PerArmMatrix6 = Eigen::Matrix<Scalar, 6, end_effector_stack_size(Arms)>;
+
+/// Per-arm 3x3 matrices side by side: 3 x 3N (rotational inertias J_i).
+template <typename Scalar, int Arms>
+using PerArmMatrix3 = Eigen::Matrix<Scalar, 3, times_three(Arms)>;
+
+namespace detail {
+
+/// Number of arms encoded by a compile-time column count of an r-like 3 x N argument.
+template <typename Derived> constexpr int arms_of() noexcept { return Derived::ColsAtCompileTime; }
+
+/// Number of arms encoded by a compile-time row count of a 6N stack (or Dynamic).
+constexpr int arms_from_end_effector_rows(int rows) noexcept
+{
+    return rows == Eigen::Dynamic ? Eigen::Dynamic : rows / 6;
+}
+
+/// Number of arms encoded by a compile-time row count of a 6(N + 1) stack (or Dynamic).
+constexpr int arms_from_full_rows(int rows) noexcept
+{
+    return rows == Eigen::Dynamic ? Eigen::Dynamic : rows / 6 - 1;
+}
+
+/// The first fixed value of a and b, Dynamic if both are dynamic.
+constexpr int first_fixed(int a, int b) noexcept { return a != Eigen::Dynamic ? a : b; }
+
+/// Compile-time check that two size values agree whenever both are fixed.
+constexpr bool sizes_agree(int a, int b) noexcept
+{
+    return a == Eigen::Dynamic || b == Eigen::Dynamic || a == b;
+}
+
+}  // namespace detail
+
+}  // namespace coopdyn
+
+/// Debug-only check inside noexcept per-tick code. Define COOPDYN_DISABLE_ASSERTS to remove them
+/// from debug builds too; NDEBUG removes them as usual.
+#if defined(COOPDYN_DISABLE_ASSERTS)
+#define COOPDYN_ASSERT(condition, message) ((void)0)
+#else
+#define COOPDYN_ASSERT(condition, message) assert((condition) && message)
+#endif

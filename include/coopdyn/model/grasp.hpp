@@ -1,0 +1,114 @@
+/// \file
+/// \brief Rigid-grasp kinematics: grasp matrix (24), constraint matrix (14) and constraint bias
+/// (13), and the per-arm maps G_i and G_i^T they are built from (MODEL.md section 4).
+///
+/// `r` is 3 x N: column i is r_i, from the object's centre of mass to grasp point i, in {w}.
+#pragma once
+
+#include "coopdyn/config.hpp"
+#include "coopdyn/spatial/skew.hpp"
+
+namespace coopdyn {
+
+/// \brief Wrench map of one arm, G_i h = [f; r_i x f + t]: a wrench at grasp point i expressed
+/// at the object's centre of mass, G_i = [[I3, 0], [S(r_i), I3]] (paper (24)).
+template <typename DerivedR, typename DerivedW>
+Vector6<typename DerivedW::Scalar> grasp_map_wrench(const Eigen::MatrixBase<DerivedR>& r_i,
+                                                    const Eigen::MatrixBase<DerivedW>& wrench) noexcept
+{
+    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedR, 3);
+    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedW, 6);
+    Vector6<typename DerivedW::Scalar> result;
+    result.template head<3>() = wrench.template head<3>();
+    result.template tail<3>() =
+        r_i.cross(wrench.template head<3>()) + wrench.template tail<3>();
+    return result;
+}
+
+/// \brief Twist map of one arm, G_i^T xdot_o = [v_o + w_o x r_i; w_o]: the twist of grasp point
+/// i on a rigid object (paper (10)).
+template <typename DerivedR, typename DerivedT>
+Vector6<typename DerivedT::Scalar> grasp_map_twist(const Eigen::MatrixBase<DerivedR>& r_i,
+                                                   const Eigen::MatrixBase<DerivedT>& object_twist) noexcept
+{
+    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedR, 3);
+    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedT, 6);
+    Vector6<typename DerivedT::Scalar> result;
+    result.template head<3>() =
+        object_twist.template head<3>() + object_twist.template tail<3>().cross(r_i);
+    result.template tail<3>() = object_twist.template tail<3>();
+    return result;
+}
+
+/// \brief Centripetal acceleration of grasp point i, w_o x (w_o x r_i) = S(w_o)^2 r_i: the
+/// translational part of b_i in (13); the rotational part is zero.
+template <typename DerivedR, typename DerivedOmega>
+Vector3<typename DerivedR::Scalar> centripetal_acceleration(
+    const Eigen::MatrixBase<DerivedR>& r_i, const Eigen::MatrixBase<DerivedOmega>& omega_o) noexcept
+{
+    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedR, 3);
+    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedOmega, 3);
+    return omega_o.cross(omega_o.cross(r_i));
+}
+
+/// \brief Grasp matrix G = [G_1 ... G_N] of paper (24), 6 x 6N, with h_o = G hbar (23).
+/// \param r 3 x N grasp offsets in {w}.
+template <typename DerivedR>
+Eigen::Matrix<typename DerivedR::Scalar, 6, times_six(DerivedR::ColsAtCompileTime)>
+grasp_matrix(const Eigen::MatrixBase<DerivedR>& r)
+{
+    static_assert(DerivedR::RowsAtCompileTime == 3 || DerivedR::RowsAtCompileTime == Eigen::Dynamic,
+                  "r must be 3 x N");
+    using Scalar = typename DerivedR::Scalar;
+    const Index arms = r.cols();
+    Eigen::Matrix<Scalar, 6, times_six(DerivedR::ColsAtCompileTime)> result(6, 6 * arms);
+    result.setZero();
+    for (Index i = 0; i < arms; ++i) {
+        result.template block<3, 3>(0, 6 * i).setIdentity();
+        result.template block<3, 3>(3, 6 * i) = skew(r.col(i));
+        result.template block<3, 3>(3, 6 * i + 3).setIdentity();
+    }
+    return result;
+}
+
+/// \brief Constraint matrix A of paper (14), 6N x 6(N+1), for the rigid grasp: A xdd = b.
+/// Block row i: [[-I3, S(r_i)], [0, -I3]] in the object's columns, I6 in end-effector i's.
+/// \param r 3 x N grasp offsets in {w}.
+template <typename DerivedR>
+Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime),
+              full_stack_size(DerivedR::ColsAtCompileTime)>
+constraint_matrix(const Eigen::MatrixBase<DerivedR>& r)
+{
+    using Scalar = typename DerivedR::Scalar;
+    const Index arms = r.cols();
+    Eigen::Matrix<Scalar, times_six(DerivedR::ColsAtCompileTime),
+                  full_stack_size(DerivedR::ColsAtCompileTime)>
+        result(6 * arms, 6 * (arms + 1));
+    result.setZero();
+    for (Index i = 0; i < arms; ++i) {
+        result.template block<3, 3>(6 * i, 0) = -Matrix3<Scalar>::Identity();
+        result.template block<3, 3>(6 * i, 3) = skew(r.col(i));
+        result.template block<3, 3>(6 * i + 3, 3) = -Matrix3<Scalar>::Identity();
+        result.template block<6, 6>(6 * i, 6 * (i + 1)).setIdentity();
+    }
+    return result;
+}
+
+/// \brief Constraint bias b of paper (13), 6N: b_i = [S(w_o)^2 r_i; 0].
+/// \param r 3 x N grasp offsets in {w}.
+/// \param omega_o object angular velocity in {w}.
+template <typename DerivedR, typename DerivedOmega>
+Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 1>
+constraint_bias(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedOmega>& omega_o)
+{
+    using Scalar = typename DerivedR::Scalar;
+    const Index arms = r.cols();
+    Eigen::Matrix<Scalar, times_six(DerivedR::ColsAtCompileTime), 1> result(6 * arms);
+    for (Index i = 0; i < arms; ++i) {
+        result.template segment<3>(6 * i) = centripetal_acceleration(r.col(i), omega_o);
+        result.template segment<3>(6 * i + 3).setZero();
+    }
+    return result;
+}
+
+}  // namespace coopdyn

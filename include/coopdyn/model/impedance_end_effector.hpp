@@ -1,0 +1,94 @@
+/// \file
+/// \brief Impedance-controlled end-effector (MODEL.md section 2, paper (1), (5), (6), (15)).
+#pragma once
+
+#include "coopdyn/config.hpp"
+#include "coopdyn/detail/validation.hpp"
+#include "coopdyn/spatial/pose.hpp"
+#include "coopdyn/spatial/quaternion.hpp"
+
+#include <string>
+
+namespace coopdyn {
+
+/// \brief Target dynamics of an impedance-controlled end-effector (1):
+/// M_i (xdd_i - xdd_i^d) + D_i (xdot_i - xdot_i^d) + h_i^K = h_i - h_i^d + htilde_i,
+/// with M_i = diag(m_i I3, J_i), D_i = diag(d_i I3, delta_i I3) and the stiffness wrench (5).
+///
+/// All gains are the paper's scalars. J_i is a controller parameter, constant in {w} (it does not
+/// rotate with the end-effector). Written as M_i xdd_i = hSigma_i + h_i (15), the inertia is
+/// block-diagonal, which the interaction solver exploits at compile time.
+template <typename ScalarType> struct ImpedanceEndEffector {
+    using Scalar = ScalarType;
+    /// M_i = diag(m_i I3, J_i): the interaction solver may use the block-diagonal fast path.
+    static constexpr bool has_block_diagonal_inertia = true;
+    /// The stiffness wrench is the gradient of a potential (translational and rotational springs).
+    static constexpr bool has_potential_energy = true;
+
+    Scalar mass = Scalar(0);                                          ///< m_i, kg
+    Matrix3<Scalar> rotational_inertia = Matrix3<Scalar>::Zero();     ///< J_i in {w}, kg m^2, SPD
+    Scalar translational_damping = Scalar(0);                         ///< d_i, N s/m
+    Scalar rotational_damping = Scalar(0);                            ///< delta_i, N m s/rad
+    Scalar translational_stiffness = Scalar(0);                       ///< k_i, N/m
+    Scalar rotational_stiffness = Scalar(0);                          ///< kappa_i, N m/rad
+
+    /// M_i = diag(m_i I3, J_i), 6x6.
+    Matrix6<Scalar> inertia() const noexcept
+    {
+        Matrix6<Scalar> result = Matrix6<Scalar>::Zero();
+        result.template topLeftCorner<3, 3>().diagonal().setConstant(mass);
+        result.template bottomRightCorner<3, 3>() = rotational_inertia;
+        return result;
+    }
+
+    /// h_i^K = [k_i (p_i - p_i^d); 2 d_eta kappa_i d_eps] (5), dq = q_i (x) (q_i^d)^-1.
+    Vector6<Scalar> stiffness_wrench(const Pose<Scalar>& pose, const Pose<Scalar>& desired) const noexcept
+    {
+        Vector6<Scalar> result;
+        result.template head<3>() = translational_stiffness * (pose.position - desired.position);
+        result.template tail<3>() = rotational_stiffness_torque(
+            orientation_error(pose.orientation, desired.orientation), rotational_stiffness);
+        return result;
+    }
+
+    /// Motion wrench h_i^x = M_i xdd_i^d - D_i (xdot_i - xdot_i^d) - h_i^K (6).
+    template <typename DerivedTwist, typename DerivedDesiredTwist, typename DerivedDesiredAcceleration>
+    Vector6<Scalar> motion_wrench(const Pose<Scalar>& pose, const Eigen::MatrixBase<DerivedTwist>& twist,
+                                  const Pose<Scalar>& desired,
+                                  const Eigen::MatrixBase<DerivedDesiredTwist>& desired_twist,
+                                  const Eigen::MatrixBase<DerivedDesiredAcceleration>& desired_acceleration)
+        const noexcept
+    {
+        const Vector6<Scalar> velocity_error = twist - desired_twist;
+        Vector6<Scalar> result = -stiffness_wrench(pose, desired);
+        result.template head<3>() += mass * desired_acceleration.template head<3>() -
+                                     translational_damping * velocity_error.template head<3>();
+        result.template tail<3>() += rotational_inertia * desired_acceleration.template tail<3>() -
+                                     rotational_damping * velocity_error.template tail<3>();
+        return result;
+    }
+
+    /// U_i = 1/2 k_i |p_i - p_i^d|^2 + 2 kappa_i |d_eps_i|^2 (MODEL.md section 10, (39)):
+    /// stiffness_wrench is its gradient.
+    Scalar potential_energy(const Pose<Scalar>& pose, const Pose<Scalar>& desired) const noexcept
+    {
+        return Scalar(0.5) * translational_stiffness * (pose.position - desired.position).squaredNorm() +
+               rotational_potential(orientation_error(pose.orientation, desired.orientation),
+                                    rotational_stiffness);
+    }
+
+    /// Throws InvalidModel naming the arm and the parameter: mass > 0, J_i SPD, gains >= 0, all
+    /// finite.
+    void validate(Index arm) const
+    {
+        const std::string context = detail::arm_context(arm);
+        detail::require_positive(mass, context, "mass");
+        detail::require_symmetric_positive(rotational_inertia, context, "rotational_inertia");
+        detail::require_non_negative(translational_damping, context, "translational_damping");
+        detail::require_non_negative(rotational_damping, context, "rotational_damping");
+        detail::require_non_negative(translational_stiffness, context, "translational_stiffness");
+        detail::require_non_negative(rotational_stiffness, context, "rotational_stiffness");
+    }
+};
+
+}  // namespace coopdyn
