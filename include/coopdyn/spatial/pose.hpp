@@ -8,8 +8,20 @@ namespace coopdyn {
 
 /// \brief Pose of a body: position p in {w} and unit quaternion q rotating body vectors into {w}.
 template <typename Scalar> struct Pose {
-    Vector3<Scalar> position = Vector3<Scalar>::Zero();
-    Quaternion<Scalar> orientation = Quaternion<Scalar>::Identity();
+    Vector3<Scalar> position;
+    Quaternion<Scalar> orientation;
+
+    /// Identity pose: origin, no rotation.
+    Pose() : position(Vector3<Scalar>::Zero()), orientation(Quaternion<Scalar>::Identity()) {}
+
+    /// Pose at `position_` with orientation `orientation_` (identity if omitted). Implicit, so a
+    /// braced position `{p}` or `{p, q}` reads as a pose.
+    template <typename Derived>
+    Pose(const Eigen::MatrixBase<Derived>& position_,
+         const Quaternion<Scalar>& orientation_ = Quaternion<Scalar>::Identity())
+        : position(position_), orientation(orientation_)
+    {
+    }
 
     /// Rotation matrix R(q).
     Matrix3<Scalar> rotation() const noexcept { return orientation.toRotationMatrix(); }
