@@ -231,7 +231,11 @@ template <typename ModelType> struct Data {
     /// The end-effector part h' = [h_1; ...; h_N] (6N).
     auto end_effector_wrenches() const noexcept
     {
-        return wrenches.template tail<end_effector_stack_size(Arms)>(6 * arms());
+        if constexpr (Arms == Dynamic) {
+            return wrenches.tail(6 * arms());
+        } else {
+            return wrenches.template tail<end_effector_stack_size(Arms)>();
+        }
     }
 };
 
