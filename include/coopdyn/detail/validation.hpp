@@ -7,11 +7,15 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 namespace coopdyn {
 
@@ -40,6 +44,24 @@ Eigen::Matrix<double, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime>
 values_of(const Eigen::MatrixBase<Derived>& matrix)
 {
     return matrix.unaryExpr([](const typename Derived::Scalar& x) { return value_of(x); });
+}
+
+/// Machine epsilon of the arithmetic type underlying a scalar (float, double, or the value type of
+/// an autodiff-like scalar, recursively).
+template <typename Scalar> double epsilon_of()
+{
+    if constexpr (std::is_arithmetic_v<Scalar>) {
+        return static_cast<double>(std::numeric_limits<Scalar>::epsilon());
+    } else {
+        return epsilon_of<std::decay_t<decltype(std::declval<const Scalar&>().value())>>();
+    }
+}
+
+/// A relative tolerance of at least `tolerance`, widened to 16 ulps of the scalar type, so that
+/// values rounded to float (a normalised quaternion, a rotated inertia) are not refused.
+template <typename Scalar> double tolerance_for(double tolerance)
+{
+    return std::max(tolerance, 16.0 * epsilon_of<Scalar>());
 }
 
 /// Where a parameter lives: "object", "arm 3", "model".
@@ -90,15 +112,17 @@ void require_symmetric_positive(const Eigen::MatrixBase<Derived>& matrix, const 
                                 const std::string& parameter, bool allow_semidefinite = false)
 {
     require_finite(matrix, context, parameter);
+    using Scalar = typename Derived::Scalar;
     const auto values = values_of(matrix).eval();
     const double scale = values.cwiseAbs().maxCoeff();
-    if ((values - values.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale) {
+    if ((values - values.transpose()).cwiseAbs().maxCoeff() > tolerance_for<Scalar>(1e-9) * scale) {
         fail(context, parameter, "must be symmetric");
     }
     using Dense = Eigen::Matrix<double, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime>;
     const Eigen::SelfAdjointEigenSolver<Dense> eigen(values);
     const double smallest = eigen.eigenvalues().minCoeff();
-    const bool acceptable = allow_semidefinite ? smallest >= -1e-12 * scale : smallest > 0.0;
+    const bool acceptable =
+        allow_semidefinite ? smallest >= -tolerance_for<Scalar>(1e-12) * scale : smallest > 0.0;
     if (!acceptable) {
         std::ostringstream problem;
         problem << "must be symmetric positive " << (allow_semidefinite ? "semi-" : "")
@@ -114,9 +138,9 @@ void require_unit_quaternion(const Quaternion<Scalar>& quaternion, const std::st
 {
     require_finite(quaternion.coeffs(), context, parameter);
     const double norm = values_of(quaternion.coeffs()).norm();
-    if (std::abs(norm - 1.0) > 1e-9) {
+    if (!(std::abs(norm - 1.0) <= tolerance_for<Scalar>(1e-9))) {
         std::ostringstream problem;
-        problem << "must be a unit quaternion, has norm " << norm;
+        problem << "must be a unit quaternion, has norm " << std::setprecision(17) << norm;
         fail(context, parameter, problem.str());
     }
 }

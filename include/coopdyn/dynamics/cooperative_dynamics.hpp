@@ -77,9 +77,10 @@ interaction_dynamics(const ModelType& model, Data<ModelType>& data,
         using ObjectInertia = detail::BlockDiagonalObjectInertia<Matrix3<Scalar>>;
         using EndEffectorInertias = detail::GeneralEndEffectorInertias<
             std::decay_t<decltype(model.end_effector_inertias())>>;
-        detail::solve_interaction(ObjectInertia{model.object().mass, data.object_rotational_inertia},
-                                  EndEffectorInertias{model.end_effector_inertias()}, data.grasp_offsets,
-                                  omega_o, data.h_sigma, data.accelerations, data.wrenches);
+        detail::solve_interaction_stacked<ModelType::arms_at_compile_time>(
+            ObjectInertia{model.object().mass, data.object_rotational_inertia},
+            EndEffectorInertias{model.end_effector_inertias()}, data.grasp_offsets, omega_o, data.h_sigma,
+            data.accelerations, data.wrenches);
     }
     return data.wrenches;
 }

@@ -28,24 +28,86 @@
 namespace coopdyn {
 namespace detail {
 
+/// A twist-like or wrench-like 6-vector held as two 3-vectors.
+///
+/// Why not Vector6: the per-arm arithmetic is 3-vector algebra (cross products, 3x3 blocks). On a
+/// Vector6, Eigen stores with 2- or 4-wide packets and the 3-vector halves are then reloaded with
+/// loads that straddle those stores, which defeats store-to-load forwarding; measured, the N = 2
+/// solve ran about 4x slower than with separate 3-vectors.
+template <typename Scalar> struct SpatialPair {
+    Vector3<Scalar> linear;
+    Vector3<Scalar> angular;
+
+    template <typename Derived> static SpatialPair from(const Eigen::MatrixBase<Derived>& six) noexcept
+    {
+        return SpatialPair{six.template head<3>(), six.template tail<3>()};
+    }
+    template <typename Derived> void write_to(const Eigen::MatrixBase<Derived>& six_out) const noexcept
+    {
+        auto& six = const_cast<Eigen::MatrixBase<Derived>&>(six_out);
+        six.template head<3>() = linear;
+        six.template tail<3>() = angular;
+    }
+};
+
+/// y = X x for a general 6x6 X, block by block.
+template <typename Derived, typename Scalar>
+SpatialPair<Scalar> apply_blocks(const Eigen::MatrixBase<Derived>& matrix, const SpatialPair<Scalar>& x) noexcept
+{
+    return SpatialPair<Scalar>{
+        matrix.template topLeftCorner<3, 3>() * x.linear + matrix.template topRightCorner<3, 3>() * x.angular,
+        matrix.template bottomLeftCorner<3, 3>() * x.linear + matrix.template bottomRightCorner<3, 3>() * x.angular};
+}
+
 /// Ma = M_o + sum G_i M_i G_i^T, symmetric; only its lower triangle is kept up to date, which is
-/// all the Cholesky factorisation reads.
+/// all the factorisation reads.
 template <typename Scalar> struct GeneralCompositeInertia {
     Matrix6<Scalar> matrix;
 
     /// Solve Ma xdd_o = rhs.
-    Vector6<Scalar> solve(const Vector6<Scalar>& rhs) const noexcept
+    SpatialPair<Scalar> solve(const SpatialPair<Scalar>& rhs) const noexcept
     {
         FixedCholesky<Scalar, 6> factor;
         const bool positive_definite = factor.compute(matrix);
         COOPDYN_ASSERT(positive_definite, "composite inertia Ma must be positive definite");
         (void)positive_definite;
-        return factor.solve(rhs);
+        Vector6<Scalar> stacked;
+        stacked << rhs.linear, rhs.angular;
+        return SpatialPair<Scalar>::from(factor.solve(stacked));
     }
 };
 
+/// Lower triangle of J += m S(a) S(a)^T = m (|a|^2 I3 - a a^T), the parallel-axis term, entry by
+/// entry (the upper triangle is never read).
+template <typename Scalar>
+void add_parallel_axis_lower(Matrix3<Scalar>& inertia, const Scalar& mass, const Vector3<Scalar>& a) noexcept
+{
+    const Scalar xx = a(0) * a(0);
+    const Scalar yy = a(1) * a(1);
+    const Scalar zz = a(2) * a(2);
+    inertia(0, 0) += mass * (yy + zz);
+    inertia(1, 1) += mass * (xx + zz);
+    inertia(2, 2) += mass * (xx + yy);
+    inertia(1, 0) -= mass * a(1) * a(0);
+    inertia(2, 0) -= mass * a(2) * a(0);
+    inertia(2, 1) -= mass * a(2) * a(1);
+}
+
+/// Lower triangle of `target` += `source`.
+template <typename Scalar, typename Derived>
+void add_lower(Matrix3<Scalar>& target, const Eigen::MatrixBase<Derived>& source) noexcept
+{
+    target(0, 0) += source(0, 0);
+    target(1, 0) += source(1, 0);
+    target(2, 0) += source(2, 0);
+    target(1, 1) += source(1, 1);
+    target(2, 1) += source(2, 1);
+    target(2, 2) += source(2, 2);
+}
+
 /// Ma for block-diagonal inertias: [[m I3, S(s)^T], [S(s), J]], with total mass m, first moment
-/// s = sum m_i r_i and rotational block J = J_o + sum (J_i + m_i S(r_i) S(r_i)^T).
+/// s = sum m_i r_i and rotational block J = J_o + sum (J_i + m_i S(r_i) S(r_i)^T); only J's lower
+/// triangle is kept up to date.
 template <typename Scalar> struct BlockDiagonalCompositeInertia {
     Scalar mass;
     Vector3<Scalar> first_moment;
@@ -53,19 +115,18 @@ template <typename Scalar> struct BlockDiagonalCompositeInertia {
 
     /// Solve Ma [a; alpha] = [f; t] by eliminating the translational block: with the composite
     /// centre of mass c = s / m, (J - m S(c) S(c)^T) alpha = t - c x f and a = f / m + c x alpha.
-    Vector6<Scalar> solve(const Vector6<Scalar>& rhs) const noexcept
+    SpatialPair<Scalar> solve(const SpatialPair<Scalar>& rhs) const noexcept
     {
-        const Vector3<Scalar> centre = first_moment / mass;
-        const Matrix3<Scalar> schur = rotational - mass * skew_gram(centre);
+        const Scalar inverse_mass = Scalar(1) / mass;
+        const Vector3<Scalar> centre = inverse_mass * first_moment;
+        Matrix3<Scalar> schur = rotational;
+        add_parallel_axis_lower(schur, Scalar(-mass), centre);
         FixedCholesky<Scalar, 3> factor;
         const bool positive_definite = factor.compute(schur);
         COOPDYN_ASSERT(positive_definite, "composite rotational inertia must be positive definite");
         (void)positive_definite;
-        const Vector3<Scalar> force = rhs.template head<3>();
-        Vector6<Scalar> solution;
-        solution.template tail<3>() = factor.solve(rhs.template tail<3>() - centre.cross(force));
-        solution.template head<3>() = force / mass + centre.cross(solution.template tail<3>());
-        return solution;
+        const Vector3<Scalar> angular = factor.solve(rhs.angular - centre.cross(rhs.linear));
+        return SpatialPair<Scalar>{inverse_mass * rhs.linear + centre.cross(angular), angular};
     }
 };
 
@@ -74,13 +135,10 @@ template <typename Derived> struct GeneralObjectInertia {
     using Scalar = typename Derived::Scalar;
     const Eigen::MatrixBase<Derived>& matrix;
 
-    void initialise(GeneralCompositeInertia<Scalar>& composite) const noexcept
+    void initialise(GeneralCompositeInertia<Scalar>& composite) const noexcept { composite.matrix = matrix; }
+    SpatialPair<Scalar> apply(const SpatialPair<Scalar>& acceleration) const noexcept
     {
-        composite.matrix = matrix;
-    }
-    Vector6<Scalar> apply(const Vector6<Scalar>& acceleration) const noexcept
-    {
-        return matrix * acceleration;
+        return apply_blocks(matrix, acceleration);
     }
 };
 
@@ -102,12 +160,24 @@ template <typename Derived> struct BlockDiagonalObjectInertia {
         composite.first_moment.setZero();
         composite.rotational = rotational;
     }
-    Vector6<Scalar> apply(const Vector6<Scalar>& acceleration) const noexcept
+    SpatialPair<Scalar> apply(const SpatialPair<Scalar>& acceleration) const noexcept
     {
-        Vector6<Scalar> result;
-        result.template head<3>() = mass * acceleration.template head<3>();
-        result.template tail<3>() = rotational * acceleration.template tail<3>();
-        return result;
+        return SpatialPair<Scalar>{mass * acceleration.linear, rotational * acceleration.angular};
+    }
+};
+
+/// No object: the arms alone, constrained to one rigid motion (the reduced system of (53)).
+template <typename Scalar> struct NoObject {
+    void initialise(GeneralCompositeInertia<Scalar>& composite) const noexcept { composite.matrix.setZero(); }
+    void initialise(BlockDiagonalCompositeInertia<Scalar>& composite) const noexcept
+    {
+        composite.mass = Scalar(0);
+        composite.first_moment.setZero();
+        composite.rotational.setZero();
+    }
+    SpatialPair<Scalar> apply(const SpatialPair<Scalar>&) const noexcept
+    {
+        return SpatialPair<Scalar>{Vector3<Scalar>::Zero(), Vector3<Scalar>::Zero()};
     }
 };
 
@@ -117,7 +187,7 @@ template <typename Derived> struct GeneralEndEffectorInertias {
     using Composite = GeneralCompositeInertia<Scalar>;
     const Eigen::MatrixBase<Derived>& stack;
 
-    /// Ma += G_i M_i G_i^T. With M_i = [[A, B], [B^T, C]] and S = S(r_i):
+    /// Ma += G_i M_i G_i^T (lower triangle). With M_i = [[A, B], [B^T, C]] and S = S(r_i):
     /// G_i M_i G_i^T = [[A, (S A)^T + B], [S A + B^T, S A S^T + S B + (S B)^T + C]].
     void add_to_composite(Index arm, const Vector3<Scalar>& r_i, Composite& composite) const noexcept
     {
@@ -125,20 +195,20 @@ template <typename Derived> struct GeneralEndEffectorInertias {
         const Matrix3<Scalar> s = skew(r_i);
         const Matrix3<Scalar> s_a = s * inertia.template topLeftCorner<3, 3>();
         const Matrix3<Scalar> s_b = s * inertia.template topRightCorner<3, 3>();
-        const Matrix3<Scalar> lower_left = s_a + inertia.template bottomLeftCorner<3, 3>();
         composite.matrix.template topLeftCorner<3, 3>() += inertia.template topLeftCorner<3, 3>();
-        composite.matrix.template bottomLeftCorner<3, 3>() += lower_left;
+        composite.matrix.template bottomLeftCorner<3, 3>() += s_a + inertia.template bottomLeftCorner<3, 3>();
         composite.matrix.template bottomRightCorner<3, 3>() +=
             s_a * s.transpose() + s_b + s_b.transpose() + inertia.template bottomRightCorner<3, 3>();
     }
-    Vector6<Scalar> apply(Index arm, const Vector6<Scalar>& acceleration) const noexcept
+    SpatialPair<Scalar> apply(Index arm, const SpatialPair<Scalar>& acceleration) const noexcept
     {
-        return stack.template block<6, 6>(0, 6 * arm) * acceleration;
+        return apply_blocks(stack.template block<6, 6>(0, 6 * arm), acceleration);
     }
-    /// M_i [a; 0].
-    Vector6<Scalar> apply_linear(Index arm, const Vector3<Scalar>& acceleration) const noexcept
+    /// wrench -= M_i [a; 0].
+    void subtract_linear(Index arm, const Vector3<Scalar>& acceleration, SpatialPair<Scalar>& wrench) const noexcept
     {
-        return stack.template block<6, 3>(0, 6 * arm) * acceleration;
+        wrench.linear -= stack.template block<3, 3>(0, 6 * arm) * acceleration;
+        wrench.angular -= stack.template block<3, 3>(3, 6 * arm) * acceleration;
     }
 };
 
@@ -155,71 +225,109 @@ template <typename DerivedMasses, typename DerivedRotational> struct BlockDiagon
         const Scalar mass = masses(arm);
         composite.mass += mass;
         composite.first_moment += mass * r_i;
-        composite.rotational +=
-            rotational.template block<3, 3>(0, 3 * arm) + mass * skew_gram(r_i);
+        add_lower(composite.rotational, rotational.template block<3, 3>(0, 3 * arm));
+        add_parallel_axis_lower(composite.rotational, mass, r_i);
     }
-    Vector6<Scalar> apply(Index arm, const Vector6<Scalar>& acceleration) const noexcept
+    SpatialPair<Scalar> apply(Index arm, const SpatialPair<Scalar>& acceleration) const noexcept
     {
-        Vector6<Scalar> result;
-        result.template head<3>() = masses(arm) * acceleration.template head<3>();
-        result.template tail<3>() =
-            rotational.template block<3, 3>(0, 3 * arm) * acceleration.template tail<3>();
-        return result;
+        return SpatialPair<Scalar>{masses(arm) * acceleration.linear,
+                                   rotational.template block<3, 3>(0, 3 * arm) * acceleration.angular};
     }
-    Vector6<Scalar> apply_linear(Index arm, const Vector3<Scalar>& acceleration) const noexcept
+    /// wrench -= M_i [a; 0] = [m_i a; 0].
+    void subtract_linear(Index arm, const Vector3<Scalar>& acceleration, SpatialPair<Scalar>& wrench) const noexcept
     {
-        Vector6<Scalar> result;
-        result.template head<3>() = masses(arm) * acceleration;
-        result.template tail<3>().setZero();
-        return result;
+        wrench.linear -= masses(arm) * acceleration;
     }
 };
 
-/// The structured solve shared by every inertia structure (MODEL.md section 5).
-template <typename ObjectInertia, typename EndEffectorInertias, typename DerivedR,
-          typename DerivedOmega, typename DerivedSigma, typename DerivedAcceleration,
-          typename DerivedWrench>
-void solve_interaction(const ObjectInertia& object, const EndEffectorInertias& end_effectors,
-                       const Eigen::MatrixBase<DerivedR>& r,
-                       const Eigen::MatrixBase<DerivedOmega>& omega_o,
-                       const Eigen::MatrixBase<DerivedSigma>& h_sigma,
-                       const Eigen::MatrixBase<DerivedAcceleration>& accelerations_out,
-                       const Eigen::MatrixBase<DerivedWrench>& wrenches_out) noexcept
+/// The structured solve shared by every inertia structure (MODEL.md section 5). Writes the arms'
+/// accelerations and wrenches (6N each) and returns the object's acceleration; the object's wrench
+/// goes to `object_wrench`.
+template <typename ObjectInertia, typename EndEffectorInertias, typename DerivedR, typename DerivedOmega,
+          typename DerivedSigma, typename DerivedAcceleration, typename DerivedWrench>
+SpatialPair<typename DerivedSigma::Scalar>
+solve_interaction(const ObjectInertia& object, const EndEffectorInertias& end_effectors,
+                  const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedOmega>& omega_o,
+                  const SpatialPair<typename DerivedSigma::Scalar>& object_h_sigma,
+                  const Eigen::MatrixBase<DerivedSigma>& arm_h_sigma,
+                  const Eigen::MatrixBase<DerivedAcceleration>& arm_accelerations_out,
+                  const Eigen::MatrixBase<DerivedWrench>& arm_wrenches_out,
+                  SpatialPair<typename DerivedSigma::Scalar>& object_wrench) noexcept
 {
     using Scalar = typename DerivedSigma::Scalar;
+    using Pair = SpatialPair<Scalar>;
     // Eigen's documented idiom for writable expression arguments (blocks, maps, matrices).
-    auto& accelerations = const_cast<Eigen::MatrixBase<DerivedAcceleration>&>(accelerations_out);
-    auto& wrenches = const_cast<Eigen::MatrixBase<DerivedWrench>&>(wrenches_out);
+    auto& arm_accelerations = const_cast<Eigen::MatrixBase<DerivedAcceleration>&>(arm_accelerations_out);
+    auto& arm_wrenches = const_cast<Eigen::MatrixBase<DerivedWrench>&>(arm_wrenches_out);
     const Index arms = r.cols();
     COOPDYN_ASSERT(arms >= 1, "at least one arm");
-    COOPDYN_ASSERT(h_sigma.size() == 6 * (arms + 1), "h_sigma must have 6(N+1) entries");
-    COOPDYN_ASSERT(accelerations.size() == 6 * (arms + 1), "accelerations must have 6(N+1) entries");
-    COOPDYN_ASSERT(wrenches.size() == 6 * (arms + 1), "wrenches must have 6(N+1) entries");
+    COOPDYN_ASSERT(arm_h_sigma.size() == 6 * arms, "h_sigma must have 6(N+1) entries");
+    COOPDYN_ASSERT(arm_accelerations.size() == 6 * arms, "accelerations must have 6(N+1) entries");
+    COOPDYN_ASSERT(arm_wrenches.size() == 6 * arms, "wrenches must have 6(N+1) entries");
 
     const Vector3<Scalar> omega = omega_o;
     typename EndEffectorInertias::Composite composite;
     object.initialise(composite);
-    Vector6<Scalar> rhs = h_sigma.template head<6>();
+    Pair rhs = object_h_sigma;
     for (Index i = 0; i < arms; ++i) {
-        const Vector3<Scalar> r_i = r.col(i);
+        const Vector3<Scalar> r_i = r.col(i).template head<3>();
         end_effectors.add_to_composite(i, r_i, composite);
-        const Vector6<Scalar> reduced_wrench =
-            h_sigma.template segment<6>(6 * (i + 1)) -
-            end_effectors.apply_linear(i, centripetal_acceleration(r_i, omega));
-        rhs += grasp_map_wrench(r_i, reduced_wrench);
+        // G_i (hSigma_i - M_i b_i)
+        Pair reduced = Pair::from(arm_h_sigma.template segment<6>(6 * i));
+        end_effectors.subtract_linear(i, centripetal_acceleration(r_i, omega), reduced);
+        rhs.linear += reduced.linear;
+        rhs.angular += r_i.cross(reduced.linear) + reduced.angular;
     }
 
-    const Vector6<Scalar> object_acceleration = composite.solve(rhs);
-    accelerations.template head<6>() = object_acceleration;
-    wrenches.template head<6>() = object.apply(object_acceleration) - h_sigma.template head<6>();
+    const Pair object_acceleration = composite.solve(rhs);
+    const Pair object_inertial = object.apply(object_acceleration);
+    object_wrench = Pair{object_inertial.linear - object_h_sigma.linear, object_inertial.angular - object_h_sigma.angular};
     for (Index i = 0; i < arms; ++i) {
-        const Vector3<Scalar> r_i = r.col(i);
-        Vector6<Scalar> acceleration = grasp_map_twist(r_i, object_acceleration);
-        acceleration.template head<3>() += centripetal_acceleration(r_i, omega);
-        accelerations.template segment<6>(6 * (i + 1)) = acceleration;
-        wrenches.template segment<6>(6 * (i + 1)) =
-            end_effectors.apply(i, acceleration) - h_sigma.template segment<6>(6 * (i + 1));
+        const Vector3<Scalar> r_i = r.col(i).template head<3>();
+        // xdd_i = G_i^T xdd_o + b_i, h_i = M_i xdd_i - hSigma_i
+        const Pair acceleration{object_acceleration.linear + object_acceleration.angular.cross(r_i) +
+                                    centripetal_acceleration(r_i, omega),
+                                object_acceleration.angular};
+        acceleration.write_to(arm_accelerations.template segment<6>(6 * i));
+        const Pair inertial = end_effectors.apply(i, acceleration);
+        const Pair sigma = Pair::from(arm_h_sigma.template segment<6>(6 * i));
+        Pair{inertial.linear - sigma.linear, inertial.angular - sigma.angular}.write_to(
+            arm_wrenches.template segment<6>(6 * i));
     }
+    return object_acceleration;
+}
+
+/// The end-effector part (last 6N entries) of a 6(N+1) stack, fixed-size when N is.
+template <int Arms, typename Stack> auto arm_part(Stack& stack) noexcept
+{
+    if constexpr (Arms == Eigen::Dynamic) {
+        return stack.tail(stack.size() - 6);
+    } else {
+        return stack.template tail<6 * Arms>();
+    }
+}
+
+/// The full-stack form used by the public kernels: [object; arms] in and out.
+template <int Arms, typename ObjectInertia, typename EndEffectorInertias, typename DerivedR, typename DerivedOmega,
+          typename DerivedSigma, typename DerivedAcceleration, typename DerivedWrench>
+void solve_interaction_stacked(const ObjectInertia& object, const EndEffectorInertias& end_effectors,
+                               const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedOmega>& omega_o,
+                               const Eigen::MatrixBase<DerivedSigma>& h_sigma,
+                               const Eigen::MatrixBase<DerivedAcceleration>& accelerations_out,
+                               const Eigen::MatrixBase<DerivedWrench>& wrenches_out) noexcept
+{
+    using Scalar = typename DerivedSigma::Scalar;
+    COOPDYN_ASSERT(h_sigma.size() == 6 * (r.cols() + 1), "h_sigma must have 6(N+1) entries");
+    COOPDYN_ASSERT(accelerations_out.size() == 6 * (r.cols() + 1), "accelerations must have 6(N+1) entries");
+    COOPDYN_ASSERT(wrenches_out.size() == 6 * (r.cols() + 1), "wrenches must have 6(N+1) entries");
+    auto& accelerations = const_cast<Eigen::MatrixBase<DerivedAcceleration>&>(accelerations_out);
+    auto& wrenches = const_cast<Eigen::MatrixBase<DerivedWrench>&>(wrenches_out);
+    SpatialPair<Scalar> object_wrench;
+    const SpatialPair<Scalar> object_acceleration = solve_interaction(
+        object, end_effectors, r, omega_o, SpatialPair<Scalar>::from(h_sigma.template head<6>()),
+        arm_part<Arms>(h_sigma), arm_part<Arms>(accelerations), arm_part<Arms>(wrenches), object_wrench);
+    object_acceleration.write_to(accelerations.template head<6>());
+    object_wrench.write_to(wrenches.template head<6>());
 }
 
 /// Number of arms of a kernel call, fixed when any argument fixes it.
@@ -258,9 +366,9 @@ void solve_interaction_dynamics(const Eigen::MatrixBase<DerivedObject>& object_i
                   "ee_inertia must be 6 x 6N");
     COOPDYN_ASSERT(ee_inertia.rows() == 6 && ee_inertia.cols() == 6 * r.cols(), "ee_inertia must be 6 x 6N");
     COOPDYN_ASSERT(object_inertia.rows() == 6 && object_inertia.cols() == 6, "object_inertia must be 6x6");
-    detail::solve_interaction(detail::GeneralObjectInertia<DerivedObject>{object_inertia},
-                              detail::GeneralEndEffectorInertias<DerivedInertia>{ee_inertia}, r,
-                              omega_o, h_sigma, accelerations_out, wrenches_out);
+    detail::solve_interaction_stacked<arms>(detail::GeneralObjectInertia<DerivedObject>{object_inertia},
+                                            detail::GeneralEndEffectorInertias<DerivedInertia>{ee_inertia}, r,
+                                            omega_o, h_sigma, accelerations_out, wrenches_out);
 }
 
 /// \brief Interaction wrenches h = [h_o; h_1; ...; h_N] (6(N+1)) of the rigid grasp for general
@@ -311,7 +419,7 @@ void solve_interaction_dynamics_block_diagonal(
                   "ee_rotational_inertias must be 3 x 3N");
     COOPDYN_ASSERT(ee_masses.size() == r.cols(), "ee_masses must have N entries");
     COOPDYN_ASSERT(ee_rotational_inertias.cols() == 3 * r.cols(), "ee_rotational_inertias must be 3 x 3N");
-    detail::solve_interaction(
+    detail::solve_interaction_stacked<arms>(
         detail::BlockDiagonalObjectInertia<DerivedObjectRotational>{object_mass, object_rotational_inertia},
         detail::BlockDiagonalEndEffectorInertias<DerivedMasses, DerivedRotational>{ee_masses,
                                                                                  ee_rotational_inertias},

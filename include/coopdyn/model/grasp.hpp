@@ -60,12 +60,13 @@ grasp_matrix(const Eigen::MatrixBase<DerivedR>& r)
     static_assert(DerivedR::RowsAtCompileTime == 3 || DerivedR::RowsAtCompileTime == Eigen::Dynamic,
                   "r must be 3 x N");
     using Scalar = typename DerivedR::Scalar;
+    COOPDYN_ASSERT(r.rows() == 3, "r must be 3 x N");
     const Index arms = r.cols();
     Eigen::Matrix<Scalar, 6, times_six(DerivedR::ColsAtCompileTime)> result(6, 6 * arms);
     result.setZero();
     for (Index i = 0; i < arms; ++i) {
         result.template block<3, 3>(0, 6 * i).setIdentity();
-        result.template block<3, 3>(3, 6 * i) = skew(r.col(i));
+        result.template block<3, 3>(3, 6 * i) = skew(r.col(i).template head<3>());
         result.template block<3, 3>(3, 6 * i + 3).setIdentity();
     }
     return result;
@@ -79,7 +80,10 @@ Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime),
               full_stack_size(DerivedR::ColsAtCompileTime)>
 constraint_matrix(const Eigen::MatrixBase<DerivedR>& r)
 {
+    static_assert(DerivedR::RowsAtCompileTime == 3 || DerivedR::RowsAtCompileTime == Eigen::Dynamic,
+                  "r must be 3 x N");
     using Scalar = typename DerivedR::Scalar;
+    COOPDYN_ASSERT(r.rows() == 3, "r must be 3 x N");
     const Index arms = r.cols();
     Eigen::Matrix<Scalar, times_six(DerivedR::ColsAtCompileTime),
                   full_stack_size(DerivedR::ColsAtCompileTime)>
@@ -87,7 +91,7 @@ constraint_matrix(const Eigen::MatrixBase<DerivedR>& r)
     result.setZero();
     for (Index i = 0; i < arms; ++i) {
         result.template block<3, 3>(6 * i, 0) = -Matrix3<Scalar>::Identity();
-        result.template block<3, 3>(6 * i, 3) = skew(r.col(i));
+        result.template block<3, 3>(6 * i, 3) = skew(r.col(i).template head<3>());
         result.template block<3, 3>(6 * i + 3, 3) = -Matrix3<Scalar>::Identity();
         result.template block<6, 6>(6 * i, 6 * (i + 1)).setIdentity();
     }
@@ -101,11 +105,14 @@ template <typename DerivedR, typename DerivedOmega>
 Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 1>
 constraint_bias(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedOmega>& omega_o)
 {
+    static_assert(DerivedR::RowsAtCompileTime == 3 || DerivedR::RowsAtCompileTime == Eigen::Dynamic,
+                  "r must be 3 x N");
     using Scalar = typename DerivedR::Scalar;
+    COOPDYN_ASSERT(r.rows() == 3, "r must be 3 x N");
     const Index arms = r.cols();
     Eigen::Matrix<Scalar, times_six(DerivedR::ColsAtCompileTime), 1> result(6 * arms);
     for (Index i = 0; i < arms; ++i) {
-        result.template segment<3>(6 * i) = centripetal_acceleration(r.col(i), omega_o);
+        result.template segment<3>(6 * i) = centripetal_acceleration(r.col(i).template head<3>(), omega_o);
         result.template segment<3>(6 * i + 3).setZero();
     }
     return result;

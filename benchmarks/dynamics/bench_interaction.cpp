@@ -1,0 +1,458 @@
+// Benchmarks of the per-tick interaction solve (MODEL.md section 5, paper (18)):
+//
+//   BM_BlockDiagonalKernel / BM_BlockDiagonalDynamic  structured solver, M_i = diag(m_i I3, J_i)
+//   BM_GeneralKernel / BM_GeneralDynamic              structured solver, general SPD 6x6 M_i
+//   BM_ModelTick / BM_ModelTickDynamic                interaction_dynamics(model, data, ...) with
+//                                                     ImpedanceEndEffector (kinematics, impedance
+//                                                     law, hSigma and the solve)
+//   BM_UdwadiaKalaba                                  generic reference on the dense system
+//   BM_LiteralBaseline                                (18) transcribed: symmetric square root and
+//                                                     pseudo-inverse, dynamic matrices
+//   BM_RangeSpaceBaseline                             A^T (A M^-1 A^T)^-1 (b - A M^-1 hSigma), LDLT
+//
+// "Kernel" and "ModelTick" use fixed N; the "Dynamic" variants take the same inputs with
+// N chosen at run time and write into preallocated buffers. Every variant is checked once,
+// before its timed loop, against coopdyn::udwadia_kalaba (relative error <= 1e-9); a mismatch
+// aborts that benchmark with SkipWithError, so the numbers always belong to a correct solve.
+//
+// Ratios in the report are taken against BM_LiteralBaseline at the same N.
+
+// GCC 12 with -march=native on AVX-512 machines reports false (maybe-)uninitialized warnings inside
+// its own intrinsics (_mm256_undefined_pd in _mm512_extractf64x4_pd, GCC PR 105593) when Eigen
+// reduces packets in dynamic matrix-vector products (the baselines). Silence these two warnings
+// for this file; it must precede every include that may pull in <immintrin.h>.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#endif
+
+#include <coopdyn/coopdyn.hpp>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <benchmark/benchmark.h>
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+namespace {
+
+using coopdyn::Dynamic;
+using coopdyn::Index;
+using MatrixX = Eigen::MatrixXd;
+using VectorX = Eigen::VectorXd;
+
+constexpr double tolerance = 1e-9;
+
+// ---------------------------------------------------------------------------------------------
+// Inputs: one random, well-conditioned cooperative system per N, from a fixed seed.
+// ---------------------------------------------------------------------------------------------
+
+/// Everything a solve needs, stored with dynamic sizes; the fixed-N benchmarks copy it into
+/// fixed-size matrices.
+struct Case {
+    double object_mass = 0;
+    Eigen::Matrix3d object_rotational = Eigen::Matrix3d::Zero();  // J_o in {w}
+    MatrixX object_general;                                       // general SPD 6x6 M_o
+    VectorX masses;                                               // m_i, N
+    MatrixX rotational;                                           // J_i, 3 x 3N
+    MatrixX general;                                              // general SPD M_i, 6 x 6N
+    Eigen::Matrix3Xd r;                                           // 3 x N
+    Eigen::Vector3d omega = Eigen::Vector3d::Zero();
+    VectorX h_sigma;                                              // 6(N+1)
+};
+
+class Random {
+public:
+    explicit Random(std::uint32_t seed) : engine_(seed) {}
+    double uniform(double low, double high) { return std::uniform_real_distribution<double>(low, high)(engine_); }
+    MatrixX matrix(Index rows, Index cols, double low = -1, double high = 1)
+    {
+        MatrixX result(rows, cols);
+        for (Index j = 0; j < cols; ++j) {
+            for (Index i = 0; i < rows; ++i) {
+                result(i, j) = uniform(low, high);
+            }
+        }
+        return result;
+    }
+    /// B B^T + size * shift I: SPD with a moderate condition number.
+    MatrixX spd(Index size, double shift)
+    {
+        const MatrixX factor = matrix(size, size);
+        return factor * factor.transpose() + shift * MatrixX::Identity(size, size);
+    }
+    Eigen::Quaterniond rotation()
+    {
+        Eigen::Vector4d coefficients(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+        return Eigen::Quaterniond(coefficients.normalized());
+    }
+
+private:
+    std::mt19937 engine_;
+};
+
+Case make_case(Index arms, std::uint32_t seed)
+{
+    Random random(seed);
+    Case c;
+    c.object_mass = random.uniform(1, 5);
+    c.object_rotational = random.spd(3, 0.5);
+    c.object_general = random.spd(6, 2.0);
+    c.masses.resize(arms);
+    c.rotational.resize(3, 3 * arms);
+    c.general.resize(6, 6 * arms);
+    for (Index i = 0; i < arms; ++i) {
+        c.masses(i) = random.uniform(1, 5);
+        c.rotational.block(0, 3 * i, 3, 3) = random.spd(3, 0.5);
+        c.general.block(0, 6 * i, 6, 6) = random.spd(6, 2.0);
+    }
+    c.r = random.matrix(3, arms);  // r_i in [-1, 1]^3
+    c.omega = random.matrix(3, 1, -2, 2);
+    c.h_sigma = random.matrix(6 * (arms + 1), 1, -10, 10);
+    return c;
+}
+
+const Case& case_for(Index arms)
+{
+    // One case per N, built on first use (outside every timed loop) and kept alive.
+    static std::vector<Case> cases(17);
+    Case& c = cases[static_cast<std::size_t>(arms)];
+    if (c.masses.size() == 0) {
+        c = make_case(arms, 20240601u + static_cast<std::uint32_t>(arms));
+    }
+    return c;
+}
+
+/// The dense system of (18): M = blkdiag(M_o, M_1, ..., M_N), A (14), b (13).
+struct DenseSystem {
+    MatrixX M;
+    MatrixX A;
+    VectorX b;
+    VectorX h_sigma;
+};
+
+DenseSystem dense_system(const MatrixX& object_inertia, const MatrixX& ee_inertias, const Eigen::Matrix3Xd& r,
+                         const Eigen::Vector3d& omega, const VectorX& h_sigma)
+{
+    const Index arms = r.cols();
+    DenseSystem system;
+    system.M = MatrixX::Zero(6 * (arms + 1), 6 * (arms + 1));
+    system.M.topLeftCorner(6, 6) = object_inertia;
+    for (Index i = 0; i < arms; ++i) {
+        system.M.block(6 * (i + 1), 6 * (i + 1), 6, 6) = ee_inertias.block(0, 6 * i, 6, 6);
+    }
+    system.A = coopdyn::constraint_matrix(r);
+    system.b = coopdyn::constraint_bias(r, omega);
+    system.h_sigma = h_sigma;
+    return system;
+}
+
+MatrixX block_diagonal_object(const Case& c)
+{
+    MatrixX result = MatrixX::Zero(6, 6);
+    result.topLeftCorner(3, 3).diagonal().setConstant(c.object_mass);
+    result.bottomRightCorner(3, 3) = c.object_rotational;
+    return result;
+}
+
+MatrixX block_diagonal_end_effectors(const Case& c)
+{
+    const Index arms = c.r.cols();
+    MatrixX result = MatrixX::Zero(6, 6 * arms);
+    for (Index i = 0; i < arms; ++i) {
+        result.block(0, 6 * i, 3, 3).diagonal().setConstant(c.masses(i));
+        result.block(3, 6 * i + 3, 3, 3) = c.rotational.block(0, 3 * i, 3, 3);
+    }
+    return result;
+}
+
+DenseSystem block_diagonal_system(const Case& c)
+{
+    return dense_system(block_diagonal_object(c), block_diagonal_end_effectors(c), c.r, c.omega, c.h_sigma);
+}
+
+DenseSystem general_system(const Case& c)
+{
+    return dense_system(c.object_general, c.general, c.r, c.omega, c.h_sigma);
+}
+
+VectorX reference(const DenseSystem& s) { return coopdyn::udwadia_kalaba(s.M, s.A, s.b, s.h_sigma); }
+
+/// Checks `h` against the reference once, before timing. Returns false (and marks the benchmark
+/// as failed) on a mismatch.
+template <typename Derived>
+bool check(benchmark::State& state, const Eigen::MatrixBase<Derived>& h, const VectorX& expected)
+{
+    const double error = (h - expected).norm() / expected.norm();
+    if (!(error <= tolerance)) {
+        state.SkipWithError("result differs from coopdyn::udwadia_kalaba");
+        return false;
+    }
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Baselines a reader of the paper would write (dynamic sizes, allocating).
+// ---------------------------------------------------------------------------------------------
+
+/// (18) as printed: h = M^(1/2) (A M^(-1/2))^+ (b - A M^-1 hSigma), with the symmetric square
+/// root from an eigen-decomposition and the pseudo-inverse from a complete orthogonal
+/// decomposition.
+VectorX literal_baseline(const MatrixX& M, const MatrixX& A, const VectorX& b, const VectorX& h_sigma)
+{
+    const Eigen::SelfAdjointEigenSolver<MatrixX> eigen(M);
+    const MatrixX root = eigen.operatorSqrt();
+    const MatrixX inverse_root = eigen.operatorInverseSqrt();
+    const MatrixX pseudo_inverse = Eigen::CompleteOrthogonalDecomposition<MatrixX>(A * inverse_root).pseudoInverse();
+    const VectorX unconstrained = inverse_root * (inverse_root * h_sigma);  // M^-1 hSigma
+    return root * (pseudo_inverse * (b - A * unconstrained));
+}
+
+/// Range-space (Lagrange multiplier) form: h = A^T (A M^-1 A^T)^-1 (b - A M^-1 hSigma).
+VectorX range_space_baseline(const MatrixX& M, const MatrixX& A, const VectorX& b, const VectorX& h_sigma)
+{
+    const Eigen::LDLT<MatrixX> inertia(M);
+    const MatrixX inverse_inertia_a_transpose = inertia.solve(A.transpose());
+    const Eigen::LDLT<MatrixX> schur(A * inverse_inertia_a_transpose);
+    return A.transpose() * schur.solve(b - A * inertia.solve(h_sigma));
+}
+
+// ---------------------------------------------------------------------------------------------
+// 1. Structured solver, block-diagonal inertias diag(m I3, J).
+// ---------------------------------------------------------------------------------------------
+
+template <int N> void BM_BlockDiagonalKernel(benchmark::State& state)
+{
+    const Case& c = case_for(N);
+    const double object_mass = c.object_mass;
+    const Eigen::Matrix3d object_rotational = c.object_rotational;
+    const Eigen::Matrix<double, N, 1> masses = c.masses;
+    const coopdyn::PerArmMatrix3<double, N> rotational = c.rotational;
+    const coopdyn::PerArmVector3<double, N> r = c.r;
+    const Eigen::Vector3d omega = c.omega;
+    const coopdyn::FullStackVector<double, N> h_sigma = c.h_sigma;
+
+    if (!check(state,
+               coopdyn::interaction_wrenches_block_diagonal(object_mass, object_rotational, masses,
+                                                            rotational, r, omega, h_sigma),
+               reference(block_diagonal_system(c)))) {
+        return;
+    }
+    for (auto _ : state) {
+        // The inputs may change between ticks: ClobberMemory keeps the compiler from hoisting.
+        benchmark::ClobberMemory();
+        auto h = coopdyn::interaction_wrenches_block_diagonal(object_mass, object_rotational, masses,
+                                                              rotational, r, omega, h_sigma);
+        benchmark::DoNotOptimize(h);
+    }
+}
+
+template <int N> void BM_BlockDiagonalDynamic(benchmark::State& state)
+{
+    const Case& c = case_for(N);
+    VectorX accelerations = VectorX::Zero(6 * (N + 1));
+    VectorX wrenches = VectorX::Zero(6 * (N + 1));
+    coopdyn::solve_interaction_dynamics_block_diagonal(c.object_mass, c.object_rotational, c.masses,
+                                                       c.rotational, c.r, c.omega, c.h_sigma,
+                                                       accelerations, wrenches);
+    if (!check(state, wrenches, reference(block_diagonal_system(c)))) {
+        return;
+    }
+    for (auto _ : state) {
+        benchmark::ClobberMemory();
+        coopdyn::solve_interaction_dynamics_block_diagonal(c.object_mass, c.object_rotational, c.masses,
+                                                           c.rotational, c.r, c.omega, c.h_sigma,
+                                                           accelerations, wrenches);
+        benchmark::DoNotOptimize(wrenches.data());
+        benchmark::DoNotOptimize(accelerations.data());
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// 2. Structured solver, general SPD 6x6 inertias.
+// ---------------------------------------------------------------------------------------------
+
+template <int N> void BM_GeneralKernel(benchmark::State& state)
+{
+    const Case& c = case_for(N);
+    const Eigen::Matrix<double, 6, 6> object_inertia = c.object_general;
+    const coopdyn::PerArmMatrix6<double, N> inertias = c.general;
+    const coopdyn::PerArmVector3<double, N> r = c.r;
+    const Eigen::Vector3d omega = c.omega;
+    const coopdyn::FullStackVector<double, N> h_sigma = c.h_sigma;
+
+    if (!check(state, coopdyn::interaction_wrenches(object_inertia, inertias, r, omega, h_sigma),
+               reference(general_system(c)))) {
+        return;
+    }
+    for (auto _ : state) {
+        benchmark::ClobberMemory();
+        auto h = coopdyn::interaction_wrenches(object_inertia, inertias, r, omega, h_sigma);
+        benchmark::DoNotOptimize(h);
+    }
+}
+
+template <int N> void BM_GeneralDynamic(benchmark::State& state)
+{
+    const Case& c = case_for(N);
+    VectorX accelerations = VectorX::Zero(6 * (N + 1));
+    VectorX wrenches = VectorX::Zero(6 * (N + 1));
+    coopdyn::solve_interaction_dynamics(c.object_general, c.general, c.r, c.omega, c.h_sigma, accelerations,
+                                        wrenches);
+    if (!check(state, wrenches, reference(general_system(c)))) {
+        return;
+    }
+    for (auto _ : state) {
+        benchmark::ClobberMemory();
+        coopdyn::solve_interaction_dynamics(c.object_general, c.general, c.r, c.omega, c.h_sigma,
+                                            accelerations, wrenches);
+        benchmark::DoNotOptimize(wrenches.data());
+        benchmark::DoNotOptimize(accelerations.data());
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// 3. Full Model/Data tick with impedance end-effectors.
+// ---------------------------------------------------------------------------------------------
+
+/// Model, Data and per-tick inputs for N arms (Arms = N or Dynamic), from a fixed seed.
+template <int Arms> struct TickFixture {
+    using ModelType = coopdyn::Model<double, Arms, coopdyn::ImpedanceEndEffector>;
+    using DataType = coopdyn::Data<ModelType>;
+
+    ModelType model;
+    DataType data;
+    coopdyn::RigidBodyState<double> state;
+    coopdyn::Setpoints<double, Arms> setpoints;
+    coopdyn::Disturbances<double, Arms> disturbances;
+
+    explicit TickFixture(Index arms)
+        : model(make_model(arms)), data(model), setpoints(arms), disturbances(arms)
+    {
+        Random random(777u + static_cast<std::uint32_t>(arms));
+        state.pose.position = random.matrix(3, 1);
+        state.pose.orientation = random.rotation();
+        state.twist = random.matrix(6, 1, -2, 2);
+        for (Index i = 0; i < arms; ++i) {
+            setpoints.positions.col(i) = random.matrix(3, 1);
+            setpoints.orientations.col(i) = random.rotation().coeffs();
+        }
+        setpoints.twists = random.matrix(6 * arms, 1);
+        setpoints.accelerations = random.matrix(6 * arms, 1);
+        setpoints.wrenches = random.matrix(6 * arms, 1, -5, 5);
+        disturbances.object = random.matrix(6, 1);
+        disturbances.end_effectors = random.matrix(6 * arms, 1);
+    }
+
+    static ModelType make_model(Index arms)
+    {
+        Random random(4242u + static_cast<std::uint32_t>(arms));
+        coopdyn::RigidObject<double> object;
+        object.mass = random.uniform(1, 5);
+        object.inertia_body = random.spd(3, 0.5);
+        std::vector<coopdyn::Arm<coopdyn::ImpedanceEndEffector<double>>> arm_list(static_cast<std::size_t>(arms));
+        for (auto& arm : arm_list) {
+            arm.end_effector.mass = random.uniform(1, 5);
+            arm.end_effector.rotational_inertia = random.spd(3, 0.5);
+            arm.end_effector.translational_damping = random.uniform(10, 50);
+            arm.end_effector.rotational_damping = random.uniform(1, 5);
+            arm.end_effector.translational_stiffness = random.uniform(100, 500);
+            arm.end_effector.rotational_stiffness = random.uniform(10, 50);
+            arm.grasp_body.position = random.matrix(3, 1);
+            arm.grasp_body.orientation = random.rotation();
+        }
+        return ModelType(object, arm_list);
+    }
+
+    /// The dense system the last tick solved, for the reference check.
+    DenseSystem last_system() const
+    {
+        const Index arms = model.arms();
+        MatrixX ee_inertias(6, 6 * arms);
+        for (Index i = 0; i < arms; ++i) {
+            ee_inertias.block(0, 6 * i, 6, 6) = model.end_effector(i).inertia();
+        }
+        const MatrixX object_inertia = model.object().spatial_inertia(data.object_rotation);
+        const Eigen::Matrix3Xd r = data.grasp_offsets;
+        return dense_system(object_inertia, ee_inertias, r, state.twist.tail<3>(), data.h_sigma);
+    }
+};
+
+template <int Arms> void run_tick(benchmark::State& state, Index arms)
+{
+    TickFixture<Arms> f(arms);
+    coopdyn::interaction_dynamics(f.model, f.data, f.state, f.setpoints, f.disturbances);
+    if (!check(state, f.data.wrenches, reference(f.last_system()))) {
+        return;
+    }
+    for (auto _ : state) {
+        benchmark::ClobberMemory();
+        const auto& h = coopdyn::interaction_dynamics(f.model, f.data, f.state, f.setpoints, f.disturbances);
+        benchmark::DoNotOptimize(h.data());
+    }
+}
+
+template <int N> void BM_ModelTick(benchmark::State& state) { run_tick<N>(state, N); }
+template <int N> void BM_ModelTickDynamic(benchmark::State& state) { run_tick<Dynamic>(state, N); }
+
+// ---------------------------------------------------------------------------------------------
+// 4./5. Generic reference and the two baselines, on the dense block-diagonal system.
+// ---------------------------------------------------------------------------------------------
+
+template <int N> void BM_UdwadiaKalaba(benchmark::State& state)
+{
+    const DenseSystem s = block_diagonal_system(case_for(N));
+    for (auto _ : state) {
+        benchmark::ClobberMemory();
+        VectorX h = coopdyn::udwadia_kalaba(s.M, s.A, s.b, s.h_sigma);
+        benchmark::DoNotOptimize(h.data());
+    }
+}
+
+template <int N> void BM_LiteralBaseline(benchmark::State& state)
+{
+    const DenseSystem s = block_diagonal_system(case_for(N));
+    if (!check(state, literal_baseline(s.M, s.A, s.b, s.h_sigma), reference(s))) {
+        return;
+    }
+    for (auto _ : state) {
+        benchmark::ClobberMemory();
+        VectorX h = literal_baseline(s.M, s.A, s.b, s.h_sigma);
+        benchmark::DoNotOptimize(h.data());
+    }
+}
+
+template <int N> void BM_RangeSpaceBaseline(benchmark::State& state)
+{
+    const DenseSystem s = block_diagonal_system(case_for(N));
+    if (!check(state, range_space_baseline(s.M, s.A, s.b, s.h_sigma), reference(s))) {
+        return;
+    }
+    for (auto _ : state) {
+        benchmark::ClobberMemory();
+        VectorX h = range_space_baseline(s.M, s.A, s.b, s.h_sigma);
+        benchmark::DoNotOptimize(h.data());
+    }
+}
+
+}  // namespace
+
+// N = 2, 3, 4, 8, 16 for every benchmark.
+#define COOPDYN_BENCHMARK_ARMS(name)   \
+    BENCHMARK_TEMPLATE(name, 2);       \
+    BENCHMARK_TEMPLATE(name, 3);       \
+    BENCHMARK_TEMPLATE(name, 4);       \
+    BENCHMARK_TEMPLATE(name, 8);       \
+    BENCHMARK_TEMPLATE(name, 16)
+
+COOPDYN_BENCHMARK_ARMS(BM_BlockDiagonalKernel);
+COOPDYN_BENCHMARK_ARMS(BM_BlockDiagonalDynamic);
+COOPDYN_BENCHMARK_ARMS(BM_GeneralKernel);
+COOPDYN_BENCHMARK_ARMS(BM_GeneralDynamic);
+COOPDYN_BENCHMARK_ARMS(BM_ModelTick);
+COOPDYN_BENCHMARK_ARMS(BM_ModelTickDynamic);
+COOPDYN_BENCHMARK_ARMS(BM_UdwadiaKalaba);
+COOPDYN_BENCHMARK_ARMS(BM_LiteralBaseline);
+COOPDYN_BENCHMARK_ARMS(BM_RangeSpaceBaseline);

@@ -1,0 +1,402 @@
+// The per-tick path allocates nothing once Model and Data are built (DESIGN.md section 3).
+//
+// Two independent detectors, both active inside a counting window:
+// - every replaceable global operator new / new[] (plain, nothrow, aligned) is replaced here
+//   and counts its calls: catches std::vector, std::string, std::function, ...;
+// - Eigen allocates its dynamic storage with std::malloc, not operator new, so that is caught
+//   with EIGEN_RUNTIME_NO_MALLOC: Eigen::internal::set_is_malloc_allowed(false) makes every Eigen
+//   heap allocation fail an eigen_assert, which this file redefines to count instead of abort
+//   (so it works in Release builds, where eigen_assert is normally compiled out).
+// Both detectors are shown to fire by the Sanity tests.
+
+#define EIGEN_RUNTIME_NO_MALLOC
+
+#include <atomic>
+#include <cstddef>
+#include <cstdlib>
+#include <new>
+
+namespace allocation_counter {
+inline std::atomic<bool> counting{false};
+inline std::atomic<long> operator_new_calls{0};
+inline std::atomic<long> eigen_assert_failures{0};
+
+inline void record_eigen_assert_failure() noexcept { ++eigen_assert_failures; }
+}  // namespace allocation_counter
+
+#define eigen_assert(x) ((x) ? static_cast<void>(0) : ::allocation_counter::record_eigen_assert_failure())
+
+#include "coopdyn/dynamics/cooperative_dynamics.hpp"
+#include "coopdyn/dynamics/interaction_wrenches.hpp"
+#include "coopdyn/dynamics/simulator.hpp"
+#include "coopdyn/dynamics/udwadia_kalaba.hpp"
+#include "coopdyn/model/resolved_acceleration_end_effector.hpp"
+
+#include "random_systems.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+// ---------------------------------------------------------------------------------------------
+// Replaced global allocation functions.
+namespace {
+
+void* allocate(std::size_t size) noexcept
+{
+    if (allocation_counter::counting.load()) {
+        ++allocation_counter::operator_new_calls;
+    }
+    return std::malloc(size == 0 ? 1 : size);
+}
+
+void* allocate_aligned(std::size_t size, std::align_val_t alignment) noexcept
+{
+    if (allocation_counter::counting.load()) {
+        ++allocation_counter::operator_new_calls;
+    }
+    const std::size_t align = static_cast<std::size_t>(alignment);
+    const std::size_t rounded = ((size == 0 ? 1 : size) + align - 1) / align * align;
+    return std::aligned_alloc(align, rounded);
+}
+
+void* allocate_or_throw(std::size_t size)
+{
+    void* pointer = allocate(size);
+    if (pointer == nullptr) {
+        throw std::bad_alloc();
+    }
+    return pointer;
+}
+
+void* allocate_aligned_or_throw(std::size_t size, std::align_val_t alignment)
+{
+    void* pointer = allocate_aligned(size, alignment);
+    if (pointer == nullptr) {
+        throw std::bad_alloc();
+    }
+    return pointer;
+}
+
+}  // namespace
+
+void* operator new(std::size_t size) { return allocate_or_throw(size); }
+void* operator new[](std::size_t size) { return allocate_or_throw(size); }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return allocate(size); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return allocate(size); }
+void* operator new(std::size_t size, std::align_val_t alignment) { return allocate_aligned_or_throw(size, alignment); }
+void* operator new[](std::size_t size, std::align_val_t alignment)
+{
+    return allocate_aligned_or_throw(size, alignment);
+}
+void* operator new(std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept
+{
+    return allocate_aligned(size, alignment);
+}
+void* operator new[](std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept
+{
+    return allocate_aligned(size, alignment);
+}
+
+void operator delete(void* pointer) noexcept { std::free(pointer); }
+void operator delete[](void* pointer) noexcept { std::free(pointer); }
+void operator delete(void* pointer, std::size_t) noexcept { std::free(pointer); }
+void operator delete[](void* pointer, std::size_t) noexcept { std::free(pointer); }
+void operator delete(void* pointer, const std::nothrow_t&) noexcept { std::free(pointer); }
+void operator delete[](void* pointer, const std::nothrow_t&) noexcept { std::free(pointer); }
+void operator delete(void* pointer, std::align_val_t) noexcept { std::free(pointer); }
+void operator delete[](void* pointer, std::align_val_t) noexcept { std::free(pointer); }
+void operator delete(void* pointer, std::size_t, std::align_val_t) noexcept { std::free(pointer); }
+void operator delete[](void* pointer, std::size_t, std::align_val_t) noexcept { std::free(pointer); }
+void operator delete(void* pointer, std::align_val_t, const std::nothrow_t&) noexcept { std::free(pointer); }
+void operator delete[](void* pointer, std::align_val_t, const std::nothrow_t&) noexcept { std::free(pointer); }
+
+namespace {
+
+using namespace coopdyn_test;
+
+struct Allocations {
+    long operator_new = 0;
+    long eigen = 0;
+};
+
+/// Run f with both detectors armed; no gtest assertion may run inside.
+template <typename F> Allocations count_allocations(F&& f)
+{
+    allocation_counter::operator_new_calls = 0;
+    allocation_counter::eigen_assert_failures = 0;
+    Eigen::internal::set_is_malloc_allowed(false);
+    allocation_counter::counting = true;
+    f();
+    allocation_counter::counting = false;
+    Eigen::internal::set_is_malloc_allowed(true);
+    return {allocation_counter::operator_new_calls.load(), allocation_counter::eigen_assert_failures.load()};
+}
+
+void* volatile sink = nullptr;
+
+// ---------------------------------------------------------------------------------------------
+// The detectors work.
+
+TEST(NoAllocationSanity, OperatorNewIsCounted)
+{
+    const Allocations plain = count_allocations([] {
+        void* pointer = ::operator new(64);
+        sink = pointer;
+        ::operator delete(pointer);
+    });
+    EXPECT_EQ(plain.operator_new, 1);
+
+    const Allocations aligned = count_allocations([] {
+        void* pointer = ::operator new(100, std::align_val_t(64));
+        sink = pointer;
+        ::operator delete(pointer, std::align_val_t(64));
+    });
+    EXPECT_EQ(aligned.operator_new, 1);
+
+    const Allocations vector = count_allocations([] {
+        std::vector<double> values(100, 1.0);
+        sink = values.data();
+    });
+    EXPECT_GE(vector.operator_new, 1);
+    EXPECT_EQ(vector.eigen, 0);
+}
+
+TEST(NoAllocationSanity, EigenHeapAllocationIsDetected)
+{
+    const Allocations eigen = count_allocations([] {
+        Eigen::VectorXd values = Eigen::VectorXd::Ones(100);
+        sink = values.data();
+    });
+    EXPECT_GE(eigen.eigen, 1);
+
+    // The generic reference solver is documented to allocate: the detector must see it.
+    Rng rng(1);
+    const MatrixXd M = random_spd(12, rng);
+    const MatrixXd A = random_matrix(6, 12, rng);
+    const VectorXd b = random_vector(6, rng);
+    const VectorXd h_sigma = random_vector(12, rng);
+    VectorXd h;
+    const Allocations solver = count_allocations([&] { h = coopdyn::udwadia_kalaba(M, A, b, h_sigma); });
+    EXPECT_GT(solver.eigen, 0);
+
+    // Fixed-size Eigen work allocates nothing.
+    const Allocations fixed = count_allocations([] {
+        Matrix6d m = Matrix6d::Identity();
+        m = m * m + Matrix6d::Ones();
+        sink = m.data();
+    });
+    EXPECT_EQ(fixed.operator_new, 0);
+    EXPECT_EQ(fixed.eigen, 0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Model/Data per-tick path.
+
+template <typename EndEffector> EndEffector make_end_effector(Rng& rng);
+
+template <> coopdyn::ImpedanceEndEffector<double> make_end_effector(Rng& rng)
+{
+    coopdyn::ImpedanceEndEffector<double> e;
+    e.mass = uniform(rng, 1.0, 10.0);
+    e.rotational_inertia = random_spd(3, rng, 0.5);
+    e.translational_damping = 100.0;
+    e.rotational_damping = 10.0;
+    e.translational_stiffness = 300.0;
+    e.rotational_stiffness = 50.0;
+    return e;
+}
+
+template <> coopdyn::ResolvedAccelerationEndEffector<double> make_end_effector(Rng& rng)
+{
+    coopdyn::ResolvedAccelerationEndEffector<double> e;
+    e.apparent_inertia = random_spd(6, rng, 2.0);
+    e.derivative_gain = 20.0 * Matrix6d::Identity();
+    e.proportional_gain = 100.0 * Matrix6d::Identity();
+    return e;
+}
+
+template <typename ModelType> ModelType make_model(Index arms, unsigned seed)
+{
+    Rng rng(seed);
+    coopdyn::RigidObject<double> object;
+    object.mass = 1.5;
+    object.inertia_body = random_spd(3, rng, 0.1);
+    std::vector<typename ModelType::ArmType> list;
+    const MatrixXd r = random_offsets(arms, rng);
+    for (Index i = 0; i < arms; ++i) {
+        typename ModelType::ArmType arm;
+        arm.end_effector = make_end_effector<typename ModelType::EndEffectorModel>(rng);
+        arm.grasp_body.position = r.col(i);
+        arm.grasp_body.orientation = random_unit_quaternion(rng);
+        list.push_back(arm);
+    }
+    return ModelType(object, list);
+}
+
+coopdyn::RigidBodyState<double> random_state(Rng& rng)
+{
+    coopdyn::RigidBodyState<double> state;
+    state.pose.position = random_vector(3, rng);
+    state.pose.orientation = random_unit_quaternion(rng);
+    state.twist = random_vector(6, rng);
+    return state;
+}
+
+template <typename ModelType> void expect_per_tick_path_does_not_allocate(Index arms)
+{
+    constexpr int Arms = ModelType::arms_at_compile_time;
+    const ModelType model = make_model<ModelType>(arms, 11);
+    coopdyn::Data<ModelType> data(model);
+    Rng rng(12);
+    const coopdyn::RigidBodyState<double> state = random_state(rng);
+    coopdyn::Setpoints<double, Arms> setpoints(arms);
+    setpoints.positions = random_matrix(3, arms, rng);
+    setpoints.twists = random_vector(6 * arms, rng);
+    setpoints.accelerations = random_vector(6 * arms, rng);
+    setpoints.wrenches = random_vector(6 * arms, rng);
+    coopdyn::Disturbances<double, Arms> disturbances(arms);
+    disturbances.object = random_vector(6, rng);
+    disturbances.end_effectors = random_vector(6 * arms, rng);
+
+    const Allocations kinematics = count_allocations([&] {
+        for (int tick = 0; tick < 10; ++tick) {
+            coopdyn::grasp_kinematics(model, data, state);
+        }
+    });
+    EXPECT_EQ(kinematics.operator_new, 0);
+    EXPECT_EQ(kinematics.eigen, 0);
+
+    const Allocations dynamics = count_allocations([&] {
+        for (int tick = 0; tick < 10; ++tick) {
+            coopdyn::interaction_dynamics(model, data, state, setpoints, disturbances);
+        }
+    });
+    EXPECT_EQ(dynamics.operator_new, 0);
+    EXPECT_EQ(dynamics.eigen, 0);
+    EXPECT_TRUE(data.wrenches.allFinite());
+    EXPECT_GT(data.wrenches.norm(), 0.0);
+}
+
+TEST(NoAllocation, InteractionDynamicsImpedanceFixedTwoArms)
+{
+    expect_per_tick_path_does_not_allocate<coopdyn::Model<double, 2, coopdyn::ImpedanceEndEffector>>(2);
+}
+
+TEST(NoAllocation, InteractionDynamicsImpedanceDynamicThreeArms)
+{
+    expect_per_tick_path_does_not_allocate<coopdyn::Model<double, coopdyn::Dynamic, coopdyn::ImpedanceEndEffector>>(3);
+}
+
+TEST(NoAllocation, InteractionDynamicsResolvedAccelerationFixedAndDynamic)
+{
+    expect_per_tick_path_does_not_allocate<coopdyn::Model<double, 2, coopdyn::ResolvedAccelerationEndEffector>>(2);
+    expect_per_tick_path_does_not_allocate<
+        coopdyn::Model<double, coopdyn::Dynamic, coopdyn::ResolvedAccelerationEndEffector>>(3);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Kernels.
+
+TEST(NoAllocation, SolveKernelsIntoPreallocatedDynamicVectors)
+{
+    Rng rng(20);
+    const Index arms = 3;
+    const MatrixXd object = random_spd(6, rng);
+    MatrixXd ee(6, 6 * arms);
+    for (Index i = 0; i < arms; ++i) {
+        ee.block(0, 6 * i, 6, 6) = random_spd(6, rng);
+    }
+    const Matrix3d object_rotational = random_spd(3, rng, 0.2);
+    const VectorXd masses = random_vector(arms, rng, 1.0, 5.0);
+    MatrixXd rotational(3, 3 * arms);
+    for (Index i = 0; i < arms; ++i) {
+        rotational.block(0, 3 * i, 3, 3) = random_spd(3, rng, 0.3);
+    }
+    const MatrixXd r = random_offsets(arms, rng);
+    const Vector3d omega = random_vector(3, rng);
+    const VectorXd h_sigma = random_vector(6 * (arms + 1), rng);
+    VectorXd accelerations = VectorXd::Zero(6 * (arms + 1));
+    VectorXd wrenches = VectorXd::Zero(6 * (arms + 1));
+
+    const Allocations general = count_allocations([&] {
+        coopdyn::solve_interaction_dynamics(object, ee, r, omega, h_sigma, accelerations, wrenches);
+    });
+    EXPECT_EQ(general.operator_new, 0);
+    EXPECT_EQ(general.eigen, 0);
+    EXPECT_TRUE(wrenches.allFinite());
+
+    const Allocations block = count_allocations([&] {
+        coopdyn::solve_interaction_dynamics_block_diagonal(1.5, object_rotational, masses, rotational, r, omega,
+                                                           h_sigma, accelerations, wrenches);
+    });
+    EXPECT_EQ(block.operator_new, 0);
+    EXPECT_EQ(block.eigen, 0);
+    EXPECT_TRUE(wrenches.allFinite());
+}
+
+TEST(NoAllocation, FixedSizeInteractionWrenches)
+{
+    Rng rng(21);
+    const Matrix6d object = random_spd(6, rng);
+    Eigen::Matrix<double, 6, 12> ee;
+    ee << random_spd(6, rng), random_spd(6, rng);
+    const Eigen::Matrix<double, 3, 2> r = random_offsets(2, rng);
+    const Vector3d omega = random_vector(3, rng);
+    const Eigen::Matrix<double, 18, 1> h_sigma = random_vector(18, rng);
+    const Matrix3d object_rotational = random_spd(3, rng, 0.2);
+    const Eigen::Vector2d masses(2.0, 3.0);
+    Eigen::Matrix<double, 3, 6> rotational;
+    rotational << random_spd(3, rng, 0.3), random_spd(3, rng, 0.3);
+    Eigen::Matrix<double, 18, 1> wrenches = Eigen::Matrix<double, 18, 1>::Zero();
+    Eigen::Matrix<double, 18, 1> block_wrenches = Eigen::Matrix<double, 18, 1>::Zero();
+
+    const Allocations counts = count_allocations([&] {
+        wrenches = coopdyn::interaction_wrenches(object, ee, r, omega, h_sigma);
+        block_wrenches = coopdyn::interaction_wrenches_block_diagonal(2.5, object_rotational, masses, rotational, r,
+                                                                      omega, h_sigma);
+    });
+    EXPECT_EQ(counts.operator_new, 0);
+    EXPECT_EQ(counts.eigen, 0);
+    EXPECT_TRUE(wrenches.allFinite());
+    EXPECT_TRUE(block_wrenches.allFinite());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Simulator::step().
+
+template <typename ModelType> void expect_simulator_step_does_not_allocate(Index arms, coopdyn::Integrator integrator)
+{
+    const ModelType model = make_model<ModelType>(arms, 30);
+    Rng rng(31);
+    coopdyn::Simulator<ModelType> simulator(model, 1e-3, random_state(rng), integrator);
+    simulator.setpoints().positions = random_matrix(3, arms, rng);
+    simulator.disturbances().object = random_vector(6, rng);
+    const Allocations counts = count_allocations([&] {
+        for (int tick = 0; tick < 20; ++tick) {
+            simulator.step();
+        }
+    });
+    EXPECT_EQ(counts.operator_new, 0);
+    EXPECT_EQ(counts.eigen, 0);
+    EXPECT_TRUE(simulator.state().twist.allFinite());
+    EXPECT_NEAR(simulator.time(), 0.02, 1e-12);
+}
+
+TEST(NoAllocation, SimulatorStepFixedTwoArms)
+{
+    using ModelType = coopdyn::Model<double, 2, coopdyn::ImpedanceEndEffector>;
+    expect_simulator_step_does_not_allocate<ModelType>(2, coopdyn::Integrator::runge_kutta_4);
+    expect_simulator_step_does_not_allocate<ModelType>(2, coopdyn::Integrator::semi_implicit_euler);
+}
+
+TEST(NoAllocation, SimulatorStepDynamicArms)
+{
+    using ModelType = coopdyn::Model<double, coopdyn::Dynamic, coopdyn::ImpedanceEndEffector>;
+    expect_simulator_step_does_not_allocate<ModelType>(3, coopdyn::Integrator::runge_kutta_4);
+    expect_simulator_step_does_not_allocate<ModelType>(3, coopdyn::Integrator::semi_implicit_euler);
+    using ResolvedModel = coopdyn::Model<double, coopdyn::Dynamic, coopdyn::ResolvedAccelerationEndEffector>;
+    expect_simulator_step_does_not_allocate<ResolvedModel>(4, coopdyn::Integrator::runge_kutta_4);
+}
+
+}  // namespace
