@@ -17,16 +17,10 @@
 //
 // Ratios in the report are taken against BM_LiteralBaseline at the same N.
 
-// GCC 12 with -march=native on AVX-512 machines reports false (maybe-)uninitialized warnings inside
-// its own intrinsics (_mm256_undefined_pd in _mm512_extractf64x4_pd, GCC PR 105593) when Eigen
-// reduces packets in dynamic matrix-vector products (the baselines). Silence these two warnings
-// for this file; it must precede every include that may pull in <immintrin.h>.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#endif
 
 #include <coopdyn/coopdyn.hpp>
+
+#include "../common/random_systems.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -39,9 +33,11 @@
 namespace {
 
 using coopdyn::Dynamic;
-using coopdyn::Index;
-using MatrixX = Eigen::MatrixXd;
-using VectorX = Eigen::VectorXd;
+using coopdyn_benchmark::Index;
+using coopdyn_benchmark::MatrixX;
+using coopdyn_benchmark::Random;
+using coopdyn_benchmark::TickFixture;
+using coopdyn_benchmark::VectorX;
 
 constexpr double tolerance = 1e-9;
 
@@ -63,35 +59,6 @@ struct Case {
     VectorX h_sigma;                                              // 6(N+1)
 };
 
-class Random {
-public:
-    explicit Random(std::uint32_t seed) : engine_(seed) {}
-    double uniform(double low, double high) { return std::uniform_real_distribution<double>(low, high)(engine_); }
-    MatrixX matrix(Index rows, Index cols, double low = -1, double high = 1)
-    {
-        MatrixX result(rows, cols);
-        for (Index j = 0; j < cols; ++j) {
-            for (Index i = 0; i < rows; ++i) {
-                result(i, j) = uniform(low, high);
-            }
-        }
-        return result;
-    }
-    /// B B^T + size * shift I: SPD with a moderate condition number.
-    MatrixX spd(Index size, double shift)
-    {
-        const MatrixX factor = matrix(size, size);
-        return factor * factor.transpose() + shift * MatrixX::Identity(size, size);
-    }
-    Eigen::Quaterniond rotation()
-    {
-        Eigen::Vector4d coefficients(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-        return Eigen::Quaterniond(coefficients.normalized());
-    }
-
-private:
-    std::mt19937 engine_;
-};
 
 Case make_case(Index arms, std::uint32_t seed)
 {
@@ -317,74 +284,24 @@ template <int N> void BM_GeneralDynamic(benchmark::State& state)
 // 3. Full Model/Data tick with impedance end-effectors.
 // ---------------------------------------------------------------------------------------------
 
-/// Model, Data and per-tick inputs for N arms (Arms = N or Dynamic), from a fixed seed.
-template <int Arms> struct TickFixture {
-    using ModelType = coopdyn::Model<double, Arms, coopdyn::ImpedanceEndEffector>;
-    using DataType = coopdyn::Data<ModelType>;
-
-    ModelType model;
-    DataType data;
-    coopdyn::RigidBodyState<double> state;
-    coopdyn::Setpoints<double, Arms> setpoints;
-    coopdyn::Disturbances<double, Arms> disturbances;
-
-    explicit TickFixture(Index arms)
-        : model(make_model(arms)), data(model), setpoints(arms), disturbances(arms)
-    {
-        Random random(777u + static_cast<std::uint32_t>(arms));
-        state.pose.position = random.matrix(3, 1);
-        state.pose.orientation = random.rotation();
-        state.twist = random.matrix(6, 1, -2, 2);
-        for (Index i = 0; i < arms; ++i) {
-            setpoints.positions.col(i) = random.matrix(3, 1);
-            setpoints.orientations.col(i) = random.rotation().coeffs();
-        }
-        setpoints.twists = random.matrix(6 * arms, 1);
-        setpoints.accelerations = random.matrix(6 * arms, 1);
-        setpoints.wrenches = random.matrix(6 * arms, 1, -5, 5);
-        disturbances.object = random.matrix(6, 1);
-        disturbances.end_effectors = random.matrix(6 * arms, 1);
+/// The dense system the last tick of `f` solved, for the reference check.
+template <int Arms> DenseSystem last_system(const TickFixture<Arms>& f)
+{
+    const Index arms = f.model.arms();
+    MatrixX ee_inertias(6, 6 * arms);
+    for (Index i = 0; i < arms; ++i) {
+        ee_inertias.block(0, 6 * i, 6, 6) = f.model.end_effector(i).inertia();
     }
-
-    static ModelType make_model(Index arms)
-    {
-        Random random(4242u + static_cast<std::uint32_t>(arms));
-        coopdyn::RigidObject<double> object;
-        object.mass = random.uniform(1, 5);
-        object.inertia_body = random.spd(3, 0.5);
-        std::vector<coopdyn::Arm<coopdyn::ImpedanceEndEffector<double>>> arm_list(static_cast<std::size_t>(arms));
-        for (auto& arm : arm_list) {
-            arm.end_effector.mass = random.uniform(1, 5);
-            arm.end_effector.rotational_inertia = random.spd(3, 0.5);
-            arm.end_effector.translational_damping = random.uniform(10, 50);
-            arm.end_effector.rotational_damping = random.uniform(1, 5);
-            arm.end_effector.translational_stiffness = random.uniform(100, 500);
-            arm.end_effector.rotational_stiffness = random.uniform(10, 50);
-            arm.grasp_body.position = random.matrix(3, 1);
-            arm.grasp_body.orientation = random.rotation();
-        }
-        return ModelType(object, arm_list);
-    }
-
-    /// The dense system the last tick solved, for the reference check.
-    DenseSystem last_system() const
-    {
-        const Index arms = model.arms();
-        MatrixX ee_inertias(6, 6 * arms);
-        for (Index i = 0; i < arms; ++i) {
-            ee_inertias.block(0, 6 * i, 6, 6) = model.end_effector(i).inertia();
-        }
-        const MatrixX object_inertia = model.object().spatial_inertia(data.object_rotation);
-        const Eigen::Matrix3Xd r = data.grasp_offsets;
-        return dense_system(object_inertia, ee_inertias, r, state.twist.tail<3>(), data.h_sigma);
-    }
-};
+    const MatrixX object_inertia = f.model.object().spatial_inertia(f.data.object_rotation);
+    const Eigen::Matrix3Xd r = f.data.grasp_offsets;
+    return dense_system(object_inertia, ee_inertias, r, f.state.twist.template tail<3>(), f.data.h_sigma);
+}
 
 template <int Arms> void run_tick(benchmark::State& state, Index arms)
 {
     TickFixture<Arms> f(arms);
     coopdyn::interaction_dynamics(f.model, f.data, f.state, f.setpoints, f.disturbances);
-    if (!check(state, f.data.wrenches, reference(f.last_system()))) {
+    if (!check(state, f.data.wrenches, reference(last_system(f)))) {
         return;
     }
     for (auto _ : state) {
