@@ -1,0 +1,193 @@
+/// \file
+/// \brief Apparent object impedance of the cooperative system (Theorem 2, MODEL.md section 9,
+/// errata E3): inertia (31), damping (32), the exact linearised stiffness, the exact nonlinear
+/// restoring wrench and the apparent Coriolis/centrifugal wrench of the reduced model (30).
+///
+/// Under ideal feedback linearisation, gravity compensated by (26), and constant setpoints x_i^d at
+/// the grasp poses of an object equilibrium, the object obeys exactly
+///
+///     M xdd_o + (C_o xdot_o + sum_i G_i M_i b_i) + D xdot_o + h_o^K(x_o) = htilde_o      (30)
+///
+/// with M = M_o + sum G_i M_i G_i^T (31), D = sum G_i D_i G_i^T (32) and
+/// h_o^K(x_o) = sum G_i h_i^K(x_i(x_o), x_i^d). Its linearisation in a twist displacement is
+/// K = sum G_i diag(k_i I3, kappa_i I3) G_i^T, symmetric positive definite. The printed (33)-(34)
+/// put k_i S(r_i)^T in the lower-left block and zero in the upper-right (E3); that is only right
+/// when sum k_i r_i = 0.
+#pragma once
+
+#include "coopdyn/config.hpp"
+#include "coopdyn/dynamics/cooperative_dynamics.hpp"
+#include "coopdyn/model/cooperative_model.hpp"
+#include "coopdyn/model/grasp.hpp"
+#include "coopdyn/spatial/skew.hpp"
+
+#include <Eigen/Cholesky>
+
+namespace coopdyn {
+
+/// \brief Apparent object impedance M, D, K of Theorem 2, 6x6 each, in {w} about the object's
+/// centre of mass.
+template <typename Scalar> struct ApparentImpedance {
+    Matrix6<Scalar> inertia = Matrix6<Scalar>::Zero();    ///< M (31)
+    Matrix6<Scalar> damping = Matrix6<Scalar>::Zero();    ///< D (32)
+    Matrix6<Scalar> stiffness = Matrix6<Scalar>::Zero();  ///< K, exact linearisation (E3)
+};
+
+/// \brief Congruence G_i X G_i^T of a per-arm 6x6 matrix with the arm's grasp map: the arm's
+/// inertia, damping or stiffness as seen at the object's centre of mass. With S = S(r_i),
+/// G_i X G_i^T = [[X11, X11 S^T + X12], [S X11 + X21, S X11 S^T + S X12 + X21 S^T + X22]].
+template <typename DerivedR, typename DerivedX>
+Matrix6<typename DerivedX::Scalar> grasp_congruence(const Eigen::MatrixBase<DerivedR>& r_i,
+                                                    const Eigen::MatrixBase<DerivedX>& matrix) noexcept
+{
+    using Scalar = typename DerivedX::Scalar;
+    const Matrix3<Scalar> s = skew(r_i);
+    const Matrix3<Scalar> top_left = matrix.template topLeftCorner<3, 3>();
+    const Matrix3<Scalar> s_top_left = s * top_left;
+    Matrix6<Scalar> result;
+    result.template topLeftCorner<3, 3>() = top_left;
+    result.template topRightCorner<3, 3>() = top_left * s.transpose() + matrix.template topRightCorner<3, 3>();
+    result.template bottomLeftCorner<3, 3>() = s_top_left + matrix.template bottomLeftCorner<3, 3>();
+    result.template bottomRightCorner<3, 3>() = s_top_left * s.transpose() +
+                                                s * matrix.template topRightCorner<3, 3>() +
+                                                matrix.template bottomLeftCorner<3, 3>() * s.transpose() +
+                                                matrix.template bottomRightCorner<3, 3>();
+    return result;
+}
+
+/// \brief Apparent impedance (31), (32) and exact K of the cooperative system.
+/// \param object_inertia M_o, 6x6 in {w}.
+/// \param ee_inertia 6 x 6N, the M_i side by side.
+/// \param ee_damping 6 x 6N, the D_i = diag(d_i I3, delta_i I3) side by side (any 6x6 accepted).
+/// \param ee_stiffness 6 x 6N, diag(k_i I3, kappa_i I3) side by side.
+/// \param r 3 x N grasp offsets in {w}.
+template <typename DerivedObject, typename DerivedInertia, typename DerivedDamping, typename DerivedStiffness,
+          typename DerivedR>
+ApparentImpedance<typename DerivedObject::Scalar>
+apparent_impedance(const Eigen::MatrixBase<DerivedObject>& object_inertia,
+                   const Eigen::MatrixBase<DerivedInertia>& ee_inertia,
+                   const Eigen::MatrixBase<DerivedDamping>& ee_damping,
+                   const Eigen::MatrixBase<DerivedStiffness>& ee_stiffness, const Eigen::MatrixBase<DerivedR>& r) noexcept
+{
+    using Scalar = typename DerivedObject::Scalar;
+    const Index arms = r.cols();
+    COOPDYN_ASSERT(ee_inertia.cols() == 6 * arms && ee_damping.cols() == 6 * arms && ee_stiffness.cols() == 6 * arms,
+                   "per-arm matrices must be 6 x 6N");
+    ApparentImpedance<Scalar> result;
+    result.inertia = object_inertia;
+    for (Index i = 0; i < arms; ++i) {
+        const Vector3<Scalar> r_i = r.col(i).template head<3>();
+        result.inertia += grasp_congruence(r_i, ee_inertia.template block<6, 6>(0, 6 * i));
+        result.damping += grasp_congruence(r_i, ee_damping.template block<6, 6>(0, 6 * i));
+        result.stiffness += grasp_congruence(r_i, ee_stiffness.template block<6, 6>(0, 6 * i));
+    }
+    return result;
+}
+
+/// \brief Apparent impedance of a Model of impedance end-effectors at the configuration in
+/// `data` (after grasp_kinematics or interaction_dynamics): r_i and J_o are taken from `data`.
+/// M (31) and D (32) are exact at every configuration (1/2 xdot_o^T M xdot_o is the kinetic
+/// energy of object and end-effectors, xdot_o^T D xdot_o the power of the dampers). K is the
+/// Jacobian of restoring_wrench only where the springs are unloaded (x_o at the equilibrium
+/// whose grasp poses are the setpoints); at a loaded configuration the Jacobian has further
+/// load-dependent terms that this K does not contain.
+template <typename ModelType>
+ApparentImpedance<typename ModelType::Scalar> apparent_impedance(const ModelType& model,
+                                                                 const Data<ModelType>& data) noexcept
+{
+    using Scalar = typename ModelType::Scalar;
+    static_assert(ModelType::EndEffectorModel::has_potential_energy,
+                  "the apparent impedance needs impedance end-effectors (damping and stiffness gains)");
+    ApparentImpedance<Scalar> result;
+    result.inertia = model.object().spatial_inertia(data.object_rotation);
+    for (Index i = 0; i < model.arms(); ++i) {
+        const auto& arm = model.end_effector(i);
+        const Vector3<Scalar> r_i = data.grasp_offsets.col(i);
+        Vector6<Scalar> damping;
+        damping << Vector3<Scalar>::Constant(arm.translational_damping), Vector3<Scalar>::Constant(arm.rotational_damping);
+        Vector6<Scalar> stiffness;
+        stiffness << Vector3<Scalar>::Constant(arm.translational_stiffness),
+            Vector3<Scalar>::Constant(arm.rotational_stiffness);
+        result.inertia += grasp_congruence(r_i, arm.inertia());
+        result.damping += grasp_congruence(r_i, Matrix6<Scalar>(damping.asDiagonal()));
+        result.stiffness += grasp_congruence(r_i, Matrix6<Scalar>(stiffness.asDiagonal()));
+    }
+    return result;
+}
+
+/// \brief Exact nonlinear restoring wrench h_o^K(x_o) = sum_i G_i h_i^K(x_i(x_o), x_i^d) at the
+/// configuration in `data` (after grasp_kinematics), for the setpoint poses in `setpoints`.
+template <typename ModelType>
+Vector6<typename ModelType::Scalar> restoring_wrench(
+    const ModelType& model, const Data<ModelType>& data,
+    const Setpoints<typename ModelType::Scalar, ModelType::arms_at_compile_time>& setpoints) noexcept
+{
+    using Scalar = typename ModelType::Scalar;
+    Vector6<Scalar> result = Vector6<Scalar>::Zero();
+    for (Index i = 0; i < model.arms(); ++i) {
+        result += grasp_map_wrench(data.grasp_offsets.col(i),
+                                   model.end_effector(i).stiffness_wrench(data.end_effector_pose(i), setpoints.pose(i)));
+    }
+    return result;
+}
+
+/// \brief Apparent Coriolis/centrifugal wrench of (30): C_o xdot_o + sum_i G_i M_i b_i, at the
+/// configuration and twist in `data`.
+template <typename ModelType>
+Vector6<typename ModelType::Scalar> apparent_coriolis_wrench(const ModelType& model, const Data<ModelType>& data) noexcept
+{
+    using Scalar = typename ModelType::Scalar;
+    const auto& twist = data.object_state.twist;
+    const Vector3<Scalar> omega = twist.template tail<3>();
+    Vector6<Scalar> result = model.object().coriolis_wrench(data.object_rotational_inertia, twist);
+    for (Index i = 0; i < model.arms(); ++i) {
+        const Vector3<Scalar> r_i = data.grasp_offsets.col(i);
+        const Vector6<Scalar> inertial = model.end_effector_inertias().template block<6, 3>(0, 6 * i) *
+                                         centripetal_acceleration(r_i, omega);
+        result += grasp_map_wrench(r_i, inertial);
+    }
+    return result;
+}
+
+/// \brief Object acceleration of the reduced 6-DOF model (30):
+/// xdd_o = M^-1 (htilde_o - (C_o xdot_o + sum G_i M_i b_i) - D xdot_o - h_o^K(x_o)).
+/// Fills the grasp kinematics of `data` for `object_state`. Valid under the assumptions of
+/// Theorem 2: constant setpoints (setpoint twists and accelerations zero; they are not read) and
+/// gravity compensated by the desired wrenches at the current configuration,
+/// G(x_o) hbar^d = h_g. Desired wrenches held constant do that at every orientation only when
+/// the torque sum_i r_i x f_i^d does not change as the r_i rotate (e.g. equal forces on a grasp
+/// with sum_i r_i = 0, as for the Section V beam); otherwise the full model sees an extra
+/// configuration-dependent torque that (30) does not contain. Without gravity and with zero
+/// desired wrenches it is exact for any grasp.
+template <typename ModelType>
+Vector6<typename ModelType::Scalar> reduced_model_acceleration(
+    const ModelType& model, Data<ModelType>& data, const RigidBodyState<typename ModelType::Scalar>& object_state,
+    const Setpoints<typename ModelType::Scalar, ModelType::arms_at_compile_time>& setpoints,
+    const Vector6<typename ModelType::Scalar>& object_disturbance) noexcept
+{
+    using Scalar = typename ModelType::Scalar;
+    grasp_kinematics(model, data, object_state);
+    const ApparentImpedance<Scalar> impedance = apparent_impedance(model, data);
+    const Vector6<Scalar> wrench = object_disturbance - apparent_coriolis_wrench(model, data) -
+                                   impedance.damping * object_state.twist - restoring_wrench(model, data, setpoints);
+    return impedance.inertia.llt().solve(wrench);
+}
+
+/// \brief Storage function of Lemma 1 (MODEL.md section 10):
+/// V = 1/2 xdot_o^T M xdot_o + sum_i U_i, at the state in `data`, for the setpoint poses.
+template <typename ModelType>
+typename ModelType::Scalar storage_function(
+    const ModelType& model, const Data<ModelType>& data,
+    const Setpoints<typename ModelType::Scalar, ModelType::arms_at_compile_time>& setpoints) noexcept
+{
+    using Scalar = typename ModelType::Scalar;
+    const Matrix6<Scalar> inertia = apparent_impedance(model, data).inertia;
+    const auto& twist = data.object_state.twist;
+    Scalar storage = Scalar(0.5) * twist.dot(inertia * twist);
+    for (Index i = 0; i < model.arms(); ++i) {
+        storage += model.end_effector(i).potential_energy(data.end_effector_pose(i), setpoints.pose(i));
+    }
+    return storage;
+}
+
+}  // namespace coopdyn
