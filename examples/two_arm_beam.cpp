@@ -1,186 +1,369 @@
-// The main job: the paper's two-arm beam (MODEL.md section 9, Section V of the first paper),
-// held still by two impedance-controlled arms and pushed by a human-like force and torque.
+// The main job: the paper's two-arm beam experiment (Erhart & Hirche 2016, Section V; MODEL.md
+// section 9) in simulation, with identification, logs and plots.
 //
-// The beam is held at its grasp poses with the weight carried by the arms' desired wrenches
-// (each arm takes half, which is the non-squeezing split for this symmetric grasp). A smooth push
-// of --force newtons along x and a twist of --torque newton-metres about z are applied to the
-// object and released; the program prints the object motion and the arm wrenches, and compares
-// the held deflections with the apparent stiffness K = diag(600 I3, 196, 100, 196) of (61).
+// Two impedance-controlled arms hold a 1 m aluminium beam at 1 kHz. Three experiments, as in the
+// paper: translation along x, rotation about z, and the full SE(3) case. Each applies a
+// disturbance wrench to the object (a multisine or human-like pushes), logs the object's pose and
+// every arm's wrench (total, internal, external), and identifies the apparent impedance from the
+// logged wrench and pose alone by grey-box estimation (coopdyn::identify_diagonal_impedance). A
+// table per experiment compares the paper's nominal values, the identified ones and the paper's
+// values identified on the real robots. The set-up comes from a scenario file (JSON); see
+// docs/two-arm-beam.md for the file format, the CSV columns and the plots.
+//
+// Exit codes: 0 success, 1 run-time failure (identification, output files, gnuplot), 2 bad
+// command line, 3 invalid scenario file.
 
-#include <coopdyn/coopdyn.hpp>
+#include "beam_experiment.hpp"
+#include "beam_report.hpp"
+#include "csv_table.hpp"
+#include "scenario.hpp"
 
+#include "coopdyn_include.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
+
+#ifndef COOPDYN_SCENARIO_DIR
+#define COOPDYN_SCENARIO_DIR "examples/scenarios"
+#endif
 
 namespace {
 
-struct Options {
-    double duration = 10.0;  // s
-    double force = 10.0;    // N, along x
-    double torque = 1.0;    // N m, about z
+using namespace beam_example;
+namespace fs = std::filesystem;
+
+constexpr int exit_failure = 1;
+constexpr int exit_usage = 2;
+constexpr int exit_scenario = 3;
+
+struct CommandLine {
+    std::string scenario = std::string(COOPDYN_SCENARIO_DIR) + "/beam.json";
+    bool scenario_given = false;
+    std::vector<std::string> experiments{"all"};
+    std::string excitation = "multisine";
+    std::string output = "out";
+    std::string identify_log;
+    bool plots = true;
+    bool list_scenarios = false;
+    RunOptions run;
 };
 
-void print_help()
+/// Runs the selected experiments on a Model with N arms fixed at compile time (2, 3) or not.
+template <typename ModelType>
+int run_experiments(const Scenario& scenario, const CommandLine& command, const std::vector<ExperimentSpec>& specs)
 {
-    std::puts(
-        "two_arm_beam: two impedance-controlled arms hold a 1 m aluminium beam (paper Section V)\n"
-        "and a human pushes it. Prints the object motion and the arm wrenches.\n\n"
-        "Options:\n"
-        "  --duration SECONDS   simulated time (default 10, at least 9.5)\n"
-        "  --force NEWTONS      push along x, held from 0.5 s to 4.5 s (default 10)\n"
-        "  --torque NEWTON_M    twist about z, held from 5 s to 9 s (default 1)\n"
-        "  --help               this text");
+    const ModelType model(scenario.object, scenario.arms, scenario.gravity);
+    const fs::path output = command.output;
+    std::error_code error;
+    fs::create_directories(output, error);
+    if (error) {
+        std::fprintf(stderr, "two_arm_beam: cannot create the output directory '%s': %s\n", command.output.c_str(),
+                     error.message().c_str());
+        return exit_failure;
+    }
+
+    std::printf("coopdyn two-arm beam: scenario '%s' (%s)\n", scenario.name.c_str(), scenario.source.c_str());
+    if (!scenario.description.empty()) {
+        std::printf("  %s\n", scenario.description.c_str());
+    }
+    std::printf("  %lld arms, object %.4g kg, RK4 at %.4g Hz, %.4g s per experiment, seed %llu\n",
+                static_cast<long long>(model.arms()), scenario.object.mass, 1.0 / scenario.time_step,
+                command.run.duration, command.run.seed);
+
+    Progress progress(command.run.progress);
+    std::vector<ExperimentResult> results;
+    std::vector<fs::path> written;
+    std::vector<std::pair<fs::path, fs::path>> plots;  // script, image
+    double simulated = 0.0, wall = 0.0;
+    int number = 0;
+    for (const ExperimentSpec& spec : specs) {
+        ++number;
+        const auto index = static_cast<unsigned long long>(
+            std::find_if(experiment_specs().begin(), experiment_specs().end(),
+                         [&](const ExperimentSpec& s) { return s.id == spec.id; }) -
+            experiment_specs().begin());
+        ExperimentResult result = run_experiment(scenario, model, spec, command.run, progress, index);
+        print_table(scenario, result, command.run, number, static_cast<int>(specs.size()));
+        simulated += result.simulated_seconds;
+        wall += result.simulation_seconds;
+
+        const std::string stem = scenario.name + "_" + spec.id;
+        const fs::path csv = output / (stem + ".csv");
+        write_log_csv(csv, result.log);
+        written.push_back(csv);
+        const fs::path script = output / (stem + ".gp");
+        {
+            std::ofstream file(script, std::ios::binary);
+            file << gnuplot_script(stem + ".csv", stem + ".png", scenario, result, command.run.sensors.enabled);
+            if (!file) {
+                throw std::runtime_error("error writing " + script.string());
+            }
+        }
+        plots.emplace_back(script, output / (stem + ".png"));
+        result.log = ExperimentLog{};  // the log is on disk; keep the fit only
+        results.push_back(std::move(result));
+    }
+    const fs::path summary = output / (scenario.name + "_identification.csv");
+    write_summary_csv(summary, scenario, results, command.run);
+    written.push_back(summary);
+
+    std::printf("\nsimulated %.4g s (warm-up included) in %.3g s wall clock (%.0fx real time, logging every step)\n",
+                simulated, wall,
+                simulated / wall);
+    std::printf("logs (CSV, SI units, columns in docs/two-arm-beam.md):\n");
+    for (const fs::path& path : written) {
+        std::printf("  %s\n", path.string().c_str());
+    }
+
+    if (!command.plots) {
+        std::printf("plots: skipped (--no-plots); gnuplot scripts written next to the logs\n");
+        return 0;
+    }
+    const fs::path gnuplot = find_gnuplot();
+    if (gnuplot.empty()) {
+        std::printf("plots: skipped, gnuplot was not found on PATH (install the Debian package gnuplot-nox);\n"
+                    "  the scripts are written: cd %s && gnuplot %s_x.gp\n",
+                    shell_quote(output.string()).c_str(), scenario.name.c_str());
+        return 0;
+    }
+    std::printf("plots (gnuplot, PNG):\n");
+    for (const auto& [script, image] : plots) {
+        const std::string command_line = "cd " + shell_quote(output.string()) + " && " +
+                                         shell_quote(gnuplot.string()) + " " +
+                                         shell_quote(script.filename().string());
+        const int status = std::system(command_line.c_str());
+        if (status != 0) {
+            std::fprintf(stderr, "two_arm_beam: gnuplot failed on %s (status %d)\n", script.string().c_str(), status);
+            return exit_failure;
+        }
+        std::printf("  %s\n", image.string().c_str());
+    }
+    return 0;
 }
 
-bool parse_number(const char* text, double& value)
+/// --identify-log: the identification alone, on a log written by this program or by a real
+/// experiment (docs/two-arm-beam.md, "Identifying real logs").
+int identify_log(const CommandLine& command, const Scenario* scenario)
 {
-    char* end = nullptr;
-    value = std::strtod(text, &end);
-    return end != text && *end == '\0' && std::isfinite(value);
+    const CsvTable table(command.identify_log);
+    if (!table.has("time")) {
+        throw std::runtime_error(command.identify_log + ": needs a 'time' column (seconds)");
+    }
+    const std::vector<double> time = table.numbers("time");
+    if (time.size() < 10) {
+        throw std::runtime_error(command.identify_log + ": needs at least 10 samples");
+    }
+    const double period = (time.back() - time.front()) / static_cast<double>(time.size() - 1);
+    for (std::size_t n = 1; n < time.size(); ++n) {
+        if (!(std::abs(time[n] - time[n - 1] - period) <= 1e-3 * period)) {
+            throw std::runtime_error(command.identify_log + ": the time stamps are not uniform (row " +
+                                     std::to_string(n + 1) + "); resample the log to a fixed period first");
+        }
+    }
+    const std::array<const char*, 6> wrench{"meas_fx", "meas_fy", "meas_fz", "meas_tx", "meas_ty", "meas_tz"};
+    const std::array<const char*, 6> displacement{"meas_disp_x", "meas_disp_y", "meas_disp_z",
+                                                  "meas_rot_x",  "meas_rot_y",  "meas_rot_z"};
+    const auto samples = static_cast<Eigen::Index>(time.size());
+    Eigen::Matrix<double, 6, Eigen::Dynamic> h = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, samples);
+    Eigen::Matrix<double, 6, Eigen::Dynamic> x = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, samples);
+    std::array<bool, 6> axes{};
+    for (std::size_t axis = 0; axis < 6; ++axis) {
+        if (!table.has(wrench[axis]) || !table.has(displacement[axis])) {
+            continue;
+        }
+        const std::vector<double> f = table.numbers(wrench[axis]);
+        const std::vector<double> p = table.numbers(displacement[axis]);
+        const bool usable = std::all_of(f.begin(), f.end(), [](double v) { return std::isfinite(v); }) &&
+                            std::all_of(p.begin(), p.end(), [](double v) { return std::isfinite(v); }) &&
+                            std::any_of(f.begin(), f.end(), [](double v) { return v != 0.0; });
+        if (!usable) {
+            continue;
+        }
+        for (Eigen::Index n = 0; n < samples; ++n) {
+            h(static_cast<Eigen::Index>(axis), n) = f[static_cast<std::size_t>(n)];
+            x(static_cast<Eigen::Index>(axis), n) = p[static_cast<std::size_t>(n)];
+        }
+        axes[axis] = true;
+    }
+    if (std::none_of(axes.begin(), axes.end(), [](bool a) { return a; })) {
+        throw std::runtime_error(command.identify_log +
+                                 ": no axis has both a non-zero wrench column (meas_fx .. meas_tz) and a displacement "
+                                 "column (meas_disp_x .. meas_rot_z) with finite values");
+    }
+    const coopdyn::DiagonalImpedanceFit fit = coopdyn::identify_diagonal_impedance(x, h, period, {}, axes);
+
+    coopdyn::ApparentImpedance<double> nominal;
+    if (scenario != nullptr) {
+        const coopdyn::ImpedanceModelX model(scenario->object, scenario->arms, scenario->gravity);
+        coopdyn::Data<coopdyn::ImpedanceModelX> data(model);
+        coopdyn::RigidBodyState<double> state;
+        state.pose = scenario->equilibrium;
+        coopdyn::grasp_kinematics(model, data, state);
+        nominal = coopdyn::apparent_impedance(model, data);
+    }
+    std::printf("identification of %s: %lld samples at %.6g Hz\n", command.identify_log.c_str(),
+                static_cast<long long>(samples), 1.0 / period);
+    std::printf("  %-6s %-18s %15s %13s %11s %14s\n", "axis", "parameter", "identified",
+                scenario != nullptr ? "nominal" : "", scenario != nullptr ? "error" : "", "output MSE");
+    for (std::size_t axis = 0; axis < 6; ++axis) {
+        if (!axes[axis]) {
+            continue;
+        }
+        const coopdyn::ImpedanceFit& axis_fit = fit.axes[axis];
+        for (int parameter = 0; parameter < 3; ++parameter) {
+            const ParameterRow names = parameter_row(parameter, axis);
+            const double value = parameter == 0 ? axis_fit.mass : parameter == 1 ? axis_fit.damping : axis_fit.stiffness;
+            const auto i = static_cast<Eigen::Index>(axis);
+            const double reference = parameter == 0   ? nominal.inertia(i, i)
+                                     : parameter == 1 ? nominal.damping(i, i)
+                                                      : nominal.stiffness(i, i);
+            const std::string label = std::string(names.name) + " [" + names.unit + "]";
+            std::printf("  %-6s %-18s %15.7g %13s %11s %14s\n", axis_names[axis], label.c_str(), value,
+                        scenario != nullptr ? format("%.6g", reference).c_str() : "",
+                        scenario != nullptr ? percent(relative_error(value, reference)).c_str() : "",
+                        parameter == 0 ? format("%.3g", axis_fit.mean_squared_output_error).c_str() : "");
+        }
+    }
+    return 0;
 }
 
-/// Returns false (after printing why) on bad arguments.
-bool parse(int argc, char** argv, Options& options, bool& help)
+int list_scenarios()
 {
-    for (int i = 1; i < argc; ++i) {
-        const std::string name = argv[i];
-        if (name == "--help" || name == "-h") {
-            help = true;
-            return true;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(COOPDYN_SCENARIO_DIR)) {
+        if (entry.path().extension() == ".json") {
+            files.push_back(entry.path());
         }
-        double* target = name == "--duration" ? &options.duration
-                         : name == "--force"  ? &options.force
-                         : name == "--torque" ? &options.torque
-                                              : nullptr;
-        if (target == nullptr) {
-            std::fprintf(stderr, "two_arm_beam: unknown option '%s' (see --help)\n", argv[i]);
-            return false;
+    }
+    std::sort(files.begin(), files.end());
+    for (const fs::path& file : files) {
+        try {
+            const Scenario scenario = load_scenario(file.string());
+            std::printf("%-50s %s\n", file.string().c_str(), scenario.description.c_str());
+        } catch (const ScenarioError& error) {
+            std::printf("%-50s INVALID: %s\n", file.string().c_str(), error.what());
         }
-        if (i + 1 >= argc || !parse_number(argv[i + 1], *target)) {
-            std::fprintf(stderr, "two_arm_beam: option '%s' needs a number\n", argv[i]);
-            return false;
-        }
-        ++i;
     }
-    if (options.duration < 9.5) {
-        std::fprintf(stderr, "two_arm_beam: --duration must be at least 9.5 s to show both pushes\n");
-        return false;
-    }
-    return true;
-}
-
-/// Smooth human-like push: raised-cosine ramps of 0.3 s up and down around a plateau on
-/// [start, end].
-double push_profile(double time, double start, double end)
-{
-    constexpr double ramp = 0.3;
-    constexpr double pi = 3.14159265358979323846;
-    if (time <= start || time >= end) {
-        return 0.0;
-    }
-    if (time < start + ramp) {
-        return 0.5 * (1.0 - std::cos(pi * (time - start) / ramp));
-    }
-    if (time > end - ramp) {
-        return 0.5 * (1.0 - std::cos(pi * (end - time) / ramp));
-    }
-    return 1.0;
+    return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv)
 {
-    using namespace coopdyn;
-    Options options;
-    bool help = false;
-    if (!parse(argc, argv, options, help)) {
-        return 2;
+    CommandLine command;
+    CLI::App app{"two_arm_beam: the paper's two-arm beam experiment (Erhart & Hirche 2016, Section V) in "
+                 "simulation.\nTwo impedance-controlled arms hold a beam at 1 kHz; a disturbance wrench excites "
+                 "it; the apparent\nimpedance is identified from the logged wrench and pose and compared with the "
+                 "paper's values.\nWrites CSV logs, gnuplot scripts and PNG plots to --output. Docs: "
+                 "docs/two-arm-beam.md",
+                 "two_arm_beam"};
+    app.option_defaults()->always_capture_default();
+    auto* scenario_option =
+        app.add_option("--scenario", command.scenario, "Scenario file (JSON), see examples/scenarios/")
+            ->type_name("FILE");
+    app.add_option("--experiment", command.experiments, "Experiments to run: x, rot_z, se3 or all")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"x", "rot_z", "se3", "all"}))
+        ->type_name("LIST");
+    app.add_option("--duration", command.run.duration, "Simulated seconds per experiment")
+        ->check(CLI::Range(1.0, 3600.0))
+        ->type_name("SECONDS");
+    app.add_option("--excitation", command.excitation,
+                   "Disturbance wrench: multisine (random-phase, 0.1-5 Hz) or push (human-like pushes)")
+        ->check(CLI::IsMember({"multisine", "push"}))
+        ->type_name("KIND");
+    app.add_option("--force", command.run.force,
+                   "Force amplitude per axis [N]: RMS of the multisine, peak of a push (0: the scenario's)")
+        ->check(CLI::NonNegativeNumber)
+        ->type_name("NEWTONS");
+    app.add_option("--torque", command.run.torque, "Torque amplitude per axis [N m] (0: the scenario's)")
+        ->check(CLI::NonNegativeNumber)
+        ->type_name("NEWTON_METRES");
+    app.add_option("--seed", command.run.seed, "Seed of the excitation phases/pushes and of the sensor noise");
+    app.add_flag("--noise", command.run.sensors.enabled,
+                 "Realistic sensors: white noise on wrench and pose, and the force low-pass");
+    app.add_option("--force-noise", command.run.sensors.force_rms, "Force noise with --noise [N RMS]")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--torque-noise", command.run.sensors.torque_rms, "Torque noise with --noise [N m RMS]")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--position-noise", command.run.sensors.position_rms, "Position noise with --noise [m RMS]")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--angle-noise", command.run.sensors.angle_rms, "Angle noise with --noise [rad RMS]")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--lowpass", command.run.sensors.lowpass_hz,
+                   "Cut-off of the first-order force low-pass with --noise [Hz] (0: none)")
+        ->check(CLI::NonNegativeNumber)
+        ->type_name("HZ");
+    app.add_option("--output", command.output, "Directory for the CSV logs and plots (created if missing)")
+        ->type_name("DIR");
+    bool no_plots = false;
+    app.add_flag("--no-plots", no_plots, "Do not run gnuplot (the scripts are still written)");
+    bool quiet = false;
+    app.add_flag("--quiet", quiet, "No progress line");
+    app.add_option("--identify-log", command.identify_log,
+                   "Only identify the impedance from an existing log (e.g. from real robots), no simulation; "
+                   "columns: time, meas_fx..meas_tz, meas_disp_x..meas_rot_z")
+        ->type_name("CSV");
+    app.add_flag("--list-scenarios", command.list_scenarios, "List the shipped scenario files and exit");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& error) {
+        const int code = app.exit(error);
+        return code == 0 ? 0 : exit_usage;
     }
-    if (help) {
-        print_help();
-        return 0;
+    command.plots = !no_plots;
+    command.run.progress = !quiet;
+    command.scenario_given = scenario_option->count() > 0;
+    command.run.excitation = command.excitation == "push" ? ExcitationKind::push : ExcitationKind::multisine;
+
+    try {
+        if (command.list_scenarios) {
+            return list_scenarios();
+        }
+        Scenario scenario;
+        try {
+            scenario = load_scenario(command.scenario);
+        } catch (const ScenarioError& error) {
+            std::fprintf(stderr, "two_arm_beam: invalid scenario: %s\n", error.what());
+            return exit_scenario;
+        }
+        if (!command.identify_log.empty()) {
+            return identify_log(command, command.scenario_given ? &scenario : nullptr);
+        }
+        if (command.run.duration * 1.0 / scenario.time_step < 100.0) {
+            std::fprintf(stderr, "two_arm_beam: --duration %g s gives fewer than 100 samples at the scenario's "
+                                 "time step %g s\n",
+                         command.run.duration, scenario.time_step);
+            return exit_usage;
+        }
+        std::vector<ExperimentSpec> specs;
+        for (const ExperimentSpec& spec : experiment_specs()) {
+            const bool selected =
+                std::find(command.experiments.begin(), command.experiments.end(), "all") != command.experiments.end() ||
+                std::find(command.experiments.begin(), command.experiments.end(), spec.id) != command.experiments.end();
+            if (selected) {
+                specs.push_back(spec);
+            }
+        }
+        switch (scenario.arm_count()) {
+        case 2: return run_experiments<coopdyn::ImpedanceModel<2>>(scenario, command, specs);
+        case 3: return run_experiments<coopdyn::ImpedanceModel<3>>(scenario, command, specs);
+        default: return run_experiments<coopdyn::ImpedanceModelX>(scenario, command, specs);
+        }
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "\ntwo_arm_beam: %s\n", error.what());
+        return exit_failure;
     }
-
-    // Section V set-up: m_o = 1.75 kg, J_o about x and z 0.055 kg m^2 and (idealised) zero about
-    // the beam's axis y; grasps at y = -+0.4 m; m_i = 10, d_i = 180, k_i = 300, J_i = 0.5 I3,
-    // delta_i = 10, kappa_i = 50; T_s = 1 ms.
-    ImpedanceEndEffector<double> arm;
-    arm.mass = 10.0;
-    arm.rotational_inertia = 0.5 * Eigen::Matrix3d::Identity();
-    arm.translational_damping = 180.0;
-    arm.rotational_damping = 10.0;
-    arm.translational_stiffness = 300.0;
-    arm.rotational_stiffness = 50.0;
-    RigidObject<double> beam;
-    beam.mass = 1.75;
-    beam.inertia_body = Eigen::Vector3d(0.055, 0.0, 0.055).asDiagonal();
-    const ImpedanceModel2 model(beam, {{arm, {Eigen::Vector3d(0.0, -0.4, 0.0)}},
-                                       {arm, {Eigen::Vector3d(0.0, 0.4, 0.0)}}});
-
-    constexpr double time_step = 1e-3;
-    Simulator simulator(model, time_step, RigidBodyState<double>{});
-    for (Index i = 0; i < model.arms(); ++i) {
-        simulator.setpoints().set_pose(i, {model.grasp_offsets_body().col(i)});
-        // h_i^d is the desired wrench ON arm i: half the beam's weight, pointing down.
-        simulator.setpoints().wrench(i).head<3>() = 0.5 * beam.mass * model.gravity();
-    }
-    const auto inputs = [&options](double time, Setpoints<double, 2>&, Disturbances<double, 2>& disturbances) {
-        disturbances.object.setZero();
-        disturbances.object(0) = options.force * push_profile(time, 0.5, 4.5);
-        disturbances.object(5) = options.torque * push_profile(time, 5.0, 9.0);
-    };
-
-    std::printf("coopdyn two-arm beam: m_o = 1.75 kg, arms at y = -0.4 / +0.4 m, RK4 at 1 kHz, %.1f s\n",
-                options.duration);
-    std::printf("push: %.2f N along x on [0.5, 4.5] s; twist: %.2f N m about z on [5, 9] s\n\n",
-                options.force, options.torque);
-    std::printf("%7s %10s %10s %10s %10s %10s %10s %10s\n", "t [s]", "f_x [N]", "t_z [Nm]", "x [mm]",
-                "z [mm]", "rot_z [deg]", "arm0 f_x", "arm1 f_x");
-
-    const auto steps = static_cast<Index>(std::llround(options.duration / time_step));
-    double deflection_at_force_plateau = 0.0;
-    double rotation_at_torque_plateau = 0.0;
-    double peak_arm_force = 0.0;
-    const auto wall_start = std::chrono::steady_clock::now();
-    simulator.run(steps, inputs, [&](double time, const RigidBodyState<double>& state, const Data<ImpedanceModel2>& data) {
-        const Eigen::AngleAxisd rotation(state.pose.orientation);
-        const double rotation_z = rotation.angle() * rotation.axis().z();
-        peak_arm_force = std::max(peak_arm_force, data.end_effector_wrench(0).head<3>().norm());
-        const auto tick = std::llround(time / time_step);
-        if (tick == 4200) {  // end of the force plateau, settled to 0.2 %
-            deflection_at_force_plateau = state.pose.position.x();
-        }
-        if (tick == 8700) {  // end of the torque plateau, settled
-            rotation_at_torque_plateau = rotation_z;
-        }
-        if (tick % 500 == 0) {
-            std::printf("%7.2f %10.3f %10.3f %10.4f %10.4f %10.4f %10.3f %10.3f\n", time,
-                        simulator.disturbances().object(0), simulator.disturbances().object(5),
-                        1e3 * state.pose.position.x(), 1e3 * state.pose.position.z(),
-                        rotation_z * 180.0 / 3.14159265358979323846, data.end_effector_wrench(0)(0),
-                        data.end_effector_wrench(1)(0));
-        }
-    });
-    const double wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-
-    // Held deflections against the apparent stiffness (61): x = f / 600 exactly (linear springs),
-    // rot_z ~ t / 196 for small angles (the springs' torque is nonlinear in the angle).
-    const double expected_deflection = options.force / 600.0;
-    const double expected_rotation = options.torque / 196.0;
-    std::printf("\nsummary\n");
-    std::printf("  deflection under the push:  %.5f mm  (apparent stiffness 600 N/m predicts %.5f mm)\n",
-                1e3 * deflection_at_force_plateau, 1e3 * expected_deflection);
-    std::printf("  rotation under the twist:   %.5f deg (apparent stiffness 196 N m/rad predicts %.5f deg, small angle)\n",
-                rotation_at_torque_plateau * 180.0 / 3.14159265358979323846,
-                expected_rotation * 180.0 / 3.14159265358979323846);
-    std::printf("  final position:             (%.3g, %.3g, %.3g) m, peak arm force %.3f N\n",
-                simulator.state().pose.position.x(), simulator.state().pose.position.y(),
-                simulator.state().pose.position.z(), peak_arm_force);
-    std::printf("  %lld steps in %.3f s wall clock (%.0fx real time)\n", static_cast<long long>(steps),
-                wall_seconds, options.duration / wall_seconds);
-    return 0;
 }

@@ -1,0 +1,569 @@
+// Scenario files of the two-arm beam example: one JSON file describes one cooperative set-up
+// (object, arms, grasp, equilibrium, excitation defaults and, optionally, the paper's reference
+// values). The format is documented in docs/two-arm-beam.md ("Scenario files").
+//
+// This header belongs to the examples, not to the library: it depends on nlohmann-json, while
+// include/coopdyn/ depends on Eigen only. The example and its tests share it.
+//
+// Loading is all-or-nothing: load_scenario() reads and checks the whole file (syntax, every
+// field's presence and type, unknown fields, physical validity through coopdyn's own Model
+// construction) and either returns a complete Scenario or throws ScenarioError, whose message
+// names the file, the JSON path of the offending field and what is wrong, e.g.
+//
+//   scenarios/beam.json: arms[1].end_effector.mass: expected a number, got string
+//   scenarios/beam.json: arms[0].end_effector.mass: must be positive and finite, got -10
+#pragma once
+
+#include "coopdyn_include.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace beam_example {
+
+/// A scenario file is malformed or describes an invalid set-up. what() is
+/// "<source>: <json path>: <problem>".
+class ScenarioError : public std::runtime_error {
+public:
+    ScenarioError(const std::string& source, const std::string& path, const std::string& problem)
+        : std::runtime_error(source + ": " + (path.empty() ? std::string("(top level)") : path) + ": " + problem),
+          path_(path),
+          problem_(problem)
+    {
+    }
+    /// JSON path of the offending field, e.g. "arms[1].end_effector.mass".
+    const std::string& path() const noexcept { return path_; }
+    /// What is wrong with it.
+    const std::string& problem() const noexcept { return problem_; }
+
+private:
+    std::string path_;
+    std::string problem_;
+};
+
+/// Reference values of one experiment from the paper (one entry per identified axis: 1 for the
+/// single-axis experiments, 6 for SE(3) in the order x, y, z, rot x, rot y, rot z).
+struct ImpedanceValues {
+    std::vector<double> inertia, damping, stiffness;
+};
+struct PaperExperiment {
+    std::optional<ImpedanceValues> nominal;     ///< the paper's nominal values, e.g. (56)
+    std::optional<ImpedanceValues> identified;  ///< identified on the real robots, e.g. (57)
+    std::optional<double> mean_squared_output_error;  ///< of the paper's identified model (m^2 or rad^2)
+};
+struct PaperReference {
+    std::string source;
+    std::optional<PaperExperiment> translation_x, rotation_z, se3;
+};
+
+/// Amplitudes of the disturbance wrench when the command line does not override them.
+struct ExcitationDefaults {
+    double force = 5.0;   ///< N: RMS of each multisine force channel, or peak of a push
+    double torque = 1.0;  ///< N m: the same for torques
+};
+
+using Arm = coopdyn::Arm<coopdyn::ImpedanceEndEffector<double>>;
+
+/// A complete, validated set-up.
+struct Scenario {
+    std::string source;  ///< file name (or label) it was read from
+    std::string name;
+    std::string description;
+    double time_step = 1e-3;  ///< s
+    Eigen::Vector3d gravity = coopdyn::standard_gravity<double>();
+    coopdyn::RigidObject<double> object;
+    coopdyn::Pose<double> equilibrium;  ///< object pose the arms hold (setpoints at its grasp poses)
+    std::vector<Arm> arms;
+    /// Load-distribution weights m*_i (N) and J*_i (3 x 3N); empty = the end-effector inertias.
+    Eigen::VectorXd mass_weights;
+    Eigen::Matrix3Xd inertia_weights;
+    ExcitationDefaults excitation;
+    std::optional<PaperReference> paper;
+
+    coopdyn::Index arm_count() const { return static_cast<coopdyn::Index>(arms.size()); }
+    bool has_custom_weights() const { return mass_weights.size() > 0; }
+};
+
+namespace detail {
+
+using nlohmann::json;
+
+inline std::string type_name(const json& value)
+{
+    if (value.is_number()) {
+        return "number";
+    }
+    if (value.is_boolean()) {
+        return "boolean";
+    }
+    return value.type_name();  // "null", "string", "array", "object"
+}
+
+inline std::string join_path(const std::string& path, const std::string& key)
+{
+    return path.empty() ? key : path + "." + key;
+}
+
+inline std::string index_path(const std::string& path, std::size_t index)
+{
+    return path + "[" + std::to_string(index) + "]";
+}
+
+/// Walks a parsed document, naming every error by its JSON path.
+class Reader {
+public:
+    explicit Reader(std::string source) : source_(std::move(source)) {}
+
+    [[noreturn]] void fail(const std::string& path, const std::string& problem) const
+    {
+        throw ScenarioError(source_, path, problem);
+    }
+
+    void expect_object(const json& value, const std::string& path) const
+    {
+        if (!value.is_object()) {
+            fail(path, "expected an object, got " + type_name(value));
+        }
+    }
+
+    /// Refuses keys outside `allowed` (a misspelt optional field would otherwise be ignored).
+    void only_keys(const json& object, const std::string& path, std::initializer_list<const char*> allowed) const
+    {
+        for (auto it = object.begin(); it != object.end(); ++it) {
+            bool known = false;
+            for (const char* key : allowed) {
+                known = known || it.key() == key;
+            }
+            if (!known) {
+                std::string list;
+                for (const char* key : allowed) {
+                    list += list.empty() ? key : std::string(", ") + key;
+                }
+                fail(join_path(path, it.key()), "unknown field (allowed here: " + list + ")");
+            }
+        }
+    }
+
+    const json& required(const json& object, const std::string& path, const char* key) const
+    {
+        const auto it = object.find(key);
+        if (it == object.end()) {
+            fail(join_path(path, key), "missing required field");
+        }
+        return *it;
+    }
+
+    const json* optional(const json& object, const char* key) const
+    {
+        const auto it = object.find(key);
+        return it == object.end() ? nullptr : &*it;
+    }
+
+    double number(const json& value, const std::string& path) const
+    {
+        if (!value.is_number()) {
+            fail(path, "expected a number, got " + type_name(value));
+        }
+        const double result = value.get<double>();
+        if (!std::isfinite(result)) {
+            fail(path, "must be finite");
+        }
+        return result;
+    }
+
+    double positive(const json& value, const std::string& path) const
+    {
+        const double result = number(value, path);
+        if (!(result > 0.0)) {
+            std::ostringstream problem;
+            problem << "must be positive, got " << result;
+            fail(path, problem.str());
+        }
+        return result;
+    }
+
+    std::string string(const json& value, const std::string& path) const
+    {
+        if (!value.is_string()) {
+            fail(path, "expected a string, got " + type_name(value));
+        }
+        return value.get<std::string>();
+    }
+
+    long long integer(const json& value, const std::string& path) const
+    {
+        if (!value.is_number_integer() && !value.is_number_unsigned()) {
+            fail(path, "expected an integer, got " + (value.is_number() ? std::string("a fractional number")
+                                                                        : type_name(value)));
+        }
+        return value.get<long long>();
+    }
+
+    const json& array(const json& value, const std::string& path, std::size_t size = 0) const
+    {
+        if (!value.is_array()) {
+            fail(path, "expected an array, got " + type_name(value));
+        }
+        if (size > 0 && value.size() != size) {
+            fail(path, "expected " + std::to_string(size) + " entries, got " + std::to_string(value.size()));
+        }
+        return value;
+    }
+
+    std::vector<double> numbers(const json& value, const std::string& path, std::size_t size = 0) const
+    {
+        array(value, path, size);
+        std::vector<double> result;
+        for (std::size_t i = 0; i < value.size(); ++i) {
+            result.push_back(number(value[i], index_path(path, i)));
+        }
+        return result;
+    }
+
+    Eigen::Vector3d vector3(const json& value, const std::string& path) const
+    {
+        const std::vector<double> v = numbers(value, path, 3);
+        return Eigen::Vector3d(v[0], v[1], v[2]);
+    }
+
+    /// A 3x3 matrix: [a, b, c] (the diagonal) or [[...], [...], [...]] (rows).
+    Eigen::Matrix3d matrix3(const json& value, const std::string& path) const
+    {
+        array(value, path, 3);
+        if (!value[0].is_array()) {
+            return vector3(value, path).asDiagonal();
+        }
+        Eigen::Matrix3d result;
+        for (std::size_t row = 0; row < 3; ++row) {
+            result.row(static_cast<Eigen::Index>(row)) = vector3(value[row], index_path(path, row)).transpose();
+        }
+        return result;
+    }
+
+    /// A unit quaternion written [w, x, y, z].
+    Eigen::Quaterniond quaternion(const json& value, const std::string& path) const
+    {
+        const std::vector<double> q = numbers(value, path, 4);
+        const Eigen::Quaterniond result(q[0], q[1], q[2], q[3]);
+        if (std::abs(result.norm() - 1.0) > 1e-9) {
+            std::ostringstream problem;
+            problem.precision(12);
+            problem << "must be a unit quaternion [w, x, y, z], has norm " << result.norm();
+            fail(path, problem.str());
+        }
+        return result;
+    }
+
+    coopdyn::Pose<double> pose(const json& object, const std::string& path) const
+    {
+        coopdyn::Pose<double> result;
+        if (const json* position = optional(object, "position")) {
+            result.position = vector3(*position, join_path(path, "position"));
+        }
+        if (const json* orientation = optional(object, "orientation")) {
+            result.orientation = quaternion(*orientation, join_path(path, "orientation"));
+        }
+        return result;
+    }
+
+    ImpedanceValues impedance_values(const json& value, const std::string& path, std::size_t axes) const
+    {
+        expect_object(value, path);
+        only_keys(value, path, {"inertia", "damping", "stiffness"});
+        ImpedanceValues result;
+        result.inertia = numbers(required(value, path, "inertia"), join_path(path, "inertia"), axes);
+        result.damping = numbers(required(value, path, "damping"), join_path(path, "damping"), axes);
+        result.stiffness = numbers(required(value, path, "stiffness"), join_path(path, "stiffness"), axes);
+        return result;
+    }
+
+    PaperExperiment paper_experiment(const json& value, const std::string& path, std::size_t axes) const
+    {
+        expect_object(value, path);
+        only_keys(value, path, {"nominal", "identified", "mean_squared_output_error"});
+        PaperExperiment result;
+        if (const json* nominal = optional(value, "nominal")) {
+            result.nominal = impedance_values(*nominal, join_path(path, "nominal"), axes);
+        }
+        if (const json* identified = optional(value, "identified")) {
+            result.identified = impedance_values(*identified, join_path(path, "identified"), axes);
+        }
+        if (const json* error = optional(value, "mean_squared_output_error")) {
+            result.mean_squared_output_error = positive(*error, join_path(path, "mean_squared_output_error"));
+        }
+        return result;
+    }
+
+    /// Runs a coopdyn validation and turns its InvalidModel, "coopdyn: <body>: '<parameter>'
+    /// <problem>", into a ScenarioError at the JSON path of that parameter. The file's field names
+    /// are coopdyn's parameter names, so the mapping is mechanical: body "object" -> object.<p>,
+    /// "arm i" -> arms[i].end_effector.<p> (arms[i].<p> for grasp_body.*, and
+    /// load_distribution.<p>[i] for the weights), "load distribution" -> load_distribution.<p>,
+    /// "model" -> <p>.
+    template <typename Check> void physical(Check&& check) const
+    {
+        try {
+            check();
+        } catch (const coopdyn::InvalidModel& error) {
+            const std::string message = error.what();
+            const std::string lead = "coopdyn: ";
+            const auto body_end = message.find(": '", lead.size());
+            const auto close = body_end == std::string::npos ? std::string::npos : message.find('\'', body_end + 3);
+            if (message.compare(0, lead.size(), lead) != 0 || close == std::string::npos) {
+                fail("", message);
+            }
+            const std::string body = message.substr(lead.size(), body_end - lead.size());
+            const std::string parameter = message.substr(body_end + 3, close - body_end - 3);
+            std::string problem = message.substr(close + 1);
+            if (!problem.empty() && problem.front() == ' ') {
+                problem.erase(0, 1);
+            }
+            std::string path = parameter;
+            if (body == "object") {
+                path = join_path("object", parameter);
+            } else if (body == "load distribution") {
+                path = join_path("load_distribution", parameter);
+            } else if (body.compare(0, 4, "arm ") == 0) {
+                const std::string arm = "arms[" + body.substr(4) + "]";
+                if (parameter == "mass_weights" || parameter == "inertia_weights") {
+                    path = "load_distribution." + parameter + "[" + body.substr(4) + "]";
+                } else if (parameter.compare(0, 10, "grasp_body") == 0) {
+                    path = join_path(arm, parameter);
+                } else {
+                    path = join_path(arm + ".end_effector", parameter);
+                }
+            }
+            fail(path, problem);
+        }
+    }
+
+private:
+    std::string source_;
+};
+
+inline coopdyn::ImpedanceEndEffector<double> end_effector(const Reader& reader, const json& value,
+                                                          const std::string& path)
+{
+    reader.expect_object(value, path);
+    reader.only_keys(value, path,
+                     {"mass", "rotational_inertia", "translational_damping", "rotational_damping",
+                      "translational_stiffness", "rotational_stiffness"});
+    coopdyn::ImpedanceEndEffector<double> result;
+    result.mass = reader.number(reader.required(value, path, "mass"), join_path(path, "mass"));
+    result.rotational_inertia =
+        reader.matrix3(reader.required(value, path, "rotational_inertia"), join_path(path, "rotational_inertia"));
+    result.translational_damping = reader.number(reader.required(value, path, "translational_damping"),
+                                                 join_path(path, "translational_damping"));
+    result.rotational_damping =
+        reader.number(reader.required(value, path, "rotational_damping"), join_path(path, "rotational_damping"));
+    result.translational_stiffness = reader.number(reader.required(value, path, "translational_stiffness"),
+                                                   join_path(path, "translational_stiffness"));
+    result.rotational_stiffness = reader.number(reader.required(value, path, "rotational_stiffness"),
+                                                join_path(path, "rotational_stiffness"));
+    return result;
+}
+
+}  // namespace detail
+
+/// Parses and validates a scenario from JSON text. `source` names it in error messages.
+/// Throws ScenarioError; never returns a partly filled Scenario.
+inline Scenario parse_scenario(const std::string& text, const std::string& source)
+{
+    using detail::join_path;
+    using detail::json;
+    const detail::Reader reader(source);
+
+    json document;
+    try {
+        document = json::parse(text);
+    } catch (const json::parse_error& error) {
+        // nlohmann's message: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
+        std::string message = error.what();
+        const auto start = message.find("parse error");
+        reader.fail("", "not valid JSON: " + (start == std::string::npos ? message : message.substr(start)));
+    }
+
+    Scenario scenario;
+    scenario.source = source;
+    reader.expect_object(document, "");
+    reader.only_keys(document, "",
+                     {"name", "description", "time_step", "gravity", "object", "arm_count", "arms",
+                      "load_distribution", "excitation", "paper"});
+    scenario.name = reader.string(reader.required(document, "", "name"), "name");
+    if (const json* description = reader.optional(document, "description")) {
+        scenario.description = reader.string(*description, "description");
+    }
+    if (const json* time_step = reader.optional(document, "time_step")) {
+        scenario.time_step = reader.positive(*time_step, "time_step");
+        if (scenario.time_step > 0.1) {
+            reader.fail("time_step", "must be at most 0.1 s (the experiments log every step), got " +
+                                         std::to_string(scenario.time_step));
+        }
+    }
+    if (const json* gravity = reader.optional(document, "gravity")) {
+        scenario.gravity = reader.vector3(*gravity, "gravity");
+    }
+
+    // --- object
+    const json& object = reader.required(document, "", "object");
+    reader.expect_object(object, "object");
+    reader.only_keys(object, "object", {"mass", "inertia_body", "position", "orientation"});
+    scenario.object.mass = reader.number(reader.required(object, "object", "mass"), "object.mass");
+    scenario.object.inertia_body = reader.matrix3(reader.required(object, "object", "inertia_body"), "object.inertia_body");
+    scenario.equilibrium = reader.pose(object, "object");
+    reader.physical([&] { scenario.object.validate(); });
+
+    // --- arms
+    const long long arm_count = reader.integer(reader.required(document, "", "arm_count"), "arm_count");
+    if (arm_count < 1) {
+        reader.fail("arm_count", "must be at least 1, got " + std::to_string(arm_count));
+    }
+    const json& arms = reader.array(reader.required(document, "", "arms"), "arms");
+    if (arms.size() != static_cast<std::size_t>(arm_count)) {
+        reader.fail("arms", "holds " + std::to_string(arms.size()) + " arm(s) but arm_count is " +
+                                std::to_string(arm_count) + " (N mismatch)");
+    }
+    for (std::size_t i = 0; i < arms.size(); ++i) {
+        const std::string path = detail::index_path("arms", i);
+        const json& arm = arms[i];
+        reader.expect_object(arm, path);
+        reader.only_keys(arm, path, {"grasp_body", "end_effector"});
+        const json& grasp = reader.required(arm, path, "grasp_body");
+        reader.expect_object(grasp, join_path(path, "grasp_body"));
+        reader.only_keys(grasp, join_path(path, "grasp_body"), {"position", "orientation"});
+        reader.required(grasp, join_path(path, "grasp_body"), "position");
+        Arm result;
+        result.grasp_body = reader.pose(grasp, join_path(path, "grasp_body"));
+        result.end_effector =
+            detail::end_effector(reader, reader.required(arm, path, "end_effector"), join_path(path, "end_effector"));
+        reader.physical([&] { result.end_effector.validate(static_cast<coopdyn::Index>(i)); });
+        scenario.arms.push_back(result);
+    }
+    const auto count = static_cast<std::size_t>(arm_count);
+
+    // --- load distribution weights
+    if (const json* weights = reader.optional(document, "load_distribution")) {
+        const std::string path = "load_distribution";
+        reader.expect_object(*weights, path);
+        reader.only_keys(*weights, path, {"mass_weights", "inertia_weights"});
+        const std::vector<double> masses =
+            reader.numbers(reader.required(*weights, path, "mass_weights"), join_path(path, "mass_weights"));
+        if (masses.size() != count) {
+            reader.fail(join_path(path, "mass_weights"), "expected one weight per arm (" + std::to_string(count) +
+                                                             "), got " + std::to_string(masses.size()) +
+                                                             " (N mismatch)");
+        }
+        const json& inertias =
+            reader.array(reader.required(*weights, path, "inertia_weights"), join_path(path, "inertia_weights"));
+        if (inertias.size() != count) {
+            reader.fail(join_path(path, "inertia_weights"), "expected one 3x3 weight per arm (" +
+                                                                std::to_string(count) + "), got " +
+                                                                std::to_string(inertias.size()) + " (N mismatch)");
+        }
+        scenario.mass_weights = Eigen::Map<const Eigen::VectorXd>(masses.data(), static_cast<Eigen::Index>(count));
+        scenario.inertia_weights.resize(3, 3 * static_cast<Eigen::Index>(count));
+        for (std::size_t i = 0; i < count; ++i) {
+            scenario.inertia_weights.block<3, 3>(0, 3 * static_cast<Eigen::Index>(i)) =
+                reader.matrix3(inertias[i], detail::index_path(join_path(path, "inertia_weights"), i));
+        }
+    }
+
+    // --- excitation defaults
+    if (const json* excitation = reader.optional(document, "excitation")) {
+        reader.expect_object(*excitation, "excitation");
+        reader.only_keys(*excitation, "excitation", {"force", "torque"});
+        if (const json* force = reader.optional(*excitation, "force")) {
+            scenario.excitation.force = reader.positive(*force, "excitation.force");
+        }
+        if (const json* torque = reader.optional(*excitation, "torque")) {
+            scenario.excitation.torque = reader.positive(*torque, "excitation.torque");
+        }
+    }
+
+    // --- paper reference values
+    if (const json* paper = reader.optional(document, "paper")) {
+        reader.expect_object(*paper, "paper");
+        reader.only_keys(*paper, "paper", {"source", "translation_x", "rotation_z", "se3"});
+        PaperReference reference;
+        if (const json* source_text = reader.optional(*paper, "source")) {
+            reference.source = reader.string(*source_text, "paper.source");
+        }
+        if (const json* x = reader.optional(*paper, "translation_x")) {
+            reference.translation_x = reader.paper_experiment(*x, "paper.translation_x", 1);
+        }
+        if (const json* z = reader.optional(*paper, "rotation_z")) {
+            reference.rotation_z = reader.paper_experiment(*z, "paper.rotation_z", 1);
+        }
+        if (const json* se3 = reader.optional(*paper, "se3")) {
+            reference.se3 = reader.paper_experiment(*se3, "paper.se3", 6);
+        }
+        scenario.paper = reference;
+    }
+
+    // --- the whole set-up, through coopdyn's own validation
+    reader.physical([&] {
+        const coopdyn::ImpedanceModelX model(scenario.object, scenario.arms, scenario.gravity);
+        const auto distribution =
+            scenario.has_custom_weights()
+                ? coopdyn::LoadDistribution<coopdyn::ImpedanceModelX>(model, scenario.mass_weights,
+                                                                      scenario.inertia_weights)
+                : coopdyn::LoadDistribution<coopdyn::ImpedanceModelX>(model);
+        (void)distribution;
+        // The experiments need a stable equilibrium: the apparent stiffness and damping at the
+        // equilibrium (Theorem 2) must be positive definite.
+        coopdyn::Data<coopdyn::ImpedanceModelX> data(model);
+        coopdyn::RigidBodyState<double> state;
+        state.pose = scenario.equilibrium;
+        coopdyn::grasp_kinematics(model, data, state);
+        const coopdyn::ApparentImpedance<double> impedance = coopdyn::apparent_impedance(model, data);
+        const auto smallest = [](const coopdyn::Matrix6<double>& matrix) {
+            return Eigen::SelfAdjointEigenSolver<coopdyn::Matrix6<double>>(matrix, Eigen::EigenvaluesOnly)
+                .eigenvalues()
+                .minCoeff();
+        };
+        const double stiffness = smallest(impedance.stiffness);
+        const double damping = smallest(impedance.damping);
+        std::ostringstream value;
+        if (!(stiffness > 0.0)) {
+            value << stiffness;
+            reader.fail("arms", "together give an apparent stiffness K (Theorem 2) that is not positive definite "
+                                "(smallest eigenvalue " + value.str() +
+                                    "): the object has no isolated equilibrium; raise the arms' stiffnesses");
+        }
+        if (!(damping > 0.0)) {
+            value << damping;
+            reader.fail("arms", "together give an apparent damping D (Theorem 2) that is not positive definite "
+                                "(smallest eigenvalue " + value.str() +
+                                    "): the object's motion is undamped; raise the arms' damping");
+        }
+    });
+    return scenario;
+}
+
+/// Reads and validates a scenario file. Throws ScenarioError (naming the file) when the file
+/// cannot be read or is invalid.
+inline Scenario load_scenario(const std::string& path)
+{
+    std::ifstream file(path, std::ios::binary);
+    if (!file) {
+        throw ScenarioError(path, "", "cannot open the file for reading");
+    }
+    std::ostringstream text;
+    text << file.rdbuf();
+    if (file.bad()) {
+        throw ScenarioError(path, "", "read error");
+    }
+    return parse_scenario(text.str(), path);
+}
+
+}  // namespace beam_example
