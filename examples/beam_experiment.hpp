@@ -11,7 +11,7 @@
 
 #include "scenario.hpp"
 
-#include "coopdyn_include.hpp"
+#include <coopdyn/coopdyn.hpp>
 
 #include <algorithm>
 #include <array>
@@ -70,6 +70,10 @@ struct RunOptions {
     double torque = 0.0;  ///< N m (0 = the scenario's default)
     unsigned long long seed = 1;
     SensorOptions sensors;
+    /// Excitation runs per experiment, combined into the signals the identification uses
+    /// (see run_experiment): 4 (default) = +u, -u, +2u, -2u: odd parts, extrapolated to zero
+    /// amplitude; 2 = +u, -u: odd part; 1 = one run (--single-run).
+    int runs = 4;
     bool progress = true;
 };
 
@@ -249,6 +253,10 @@ struct ExperimentLog {
     Eigen::Matrix<double, 6, Eigen::Dynamic> twist;         ///< [v_o; w_o] [m/s, rad/s]
     Eigen::Matrix<double, 6, Eigen::Dynamic> displacement;  ///< p_o - p_eq [m]; log(q_o q_eq^-1) [rad]
     Eigen::Matrix<double, 6, Eigen::Dynamic> measured_displacement;  ///< as logged (noise)
+    /// The signals the identification used: the combination of the runs' measured signals (see
+    /// run_experiment), or the measured signals themselves with --single-run.
+    Eigen::Matrix<double, 6, Eigen::Dynamic> identification_wrench;
+    Eigen::Matrix<double, 6, Eigen::Dynamic> identification_displacement;
     Eigen::Matrix<double, 6, Eigen::Dynamic> model_displacement;     ///< identified model's prediction (NaN: not identified)
     /// Per arm i, rows 18 i .. 18 i + 17: total wrench h_i ON arm i, internal part (53), external
     /// part (54); each [f; t] in {w}, N and N m.
@@ -263,6 +271,8 @@ struct ExperimentLog {
         twist.resize(6, samples);
         displacement.resize(6, samples);
         measured_displacement.resize(6, samples);
+        identification_wrench.resize(6, samples);
+        identification_displacement.resize(6, samples);
         model_displacement.setConstant(6, samples, std::numeric_limits<double>::quiet_NaN());
         arm_wrenches.resize(18 * arms, samples);
     }
@@ -294,7 +304,8 @@ struct ExperimentResult {
     double cross_axis_motion = std::numeric_limits<double>::quiet_NaN();
     double excitation_force = 0.0, excitation_torque = 0.0;  ///< --force, --torque (or the scenario's)
     std::array<double, 6> amplitudes{};                       ///< per axis, as applied
-    double simulated_seconds = 0.0;       ///< simulated time, warm-up included
+    int runs = 4;                         ///< excitation runs combined for the identification (RunOptions::runs)
+    double simulated_seconds = 0.0;       ///< simulated time, warm-up and every run included
     double warmup_seconds = 0.0;          ///< simulated before the log starts (multisine only)
     double simulation_seconds = 0.0;      ///< wall clock of the simulation
     double identification_seconds = 0.0;  ///< wall clock of the identification
@@ -391,9 +402,12 @@ ExperimentResult run_experiment(const Scenario& scenario, const ModelType& model
         warmup_time = static_cast<double>(warmup_steps) * dt;
     }
 
-    Simulator<ModelType> simulator(model, dt, initial, Integrator::runge_kutta_4);
+    using SetpointsType = Setpoints<double, ModelType::arms_at_compile_time>;
+    using DisturbancesType = Disturbances<double, ModelType::arms_at_compile_time>;
+    // Setpoints: the end-effector poses at the equilibrium, held constant in every run.
+    SetpointsType setpoints_at_equilibrium(model.arms());
     for (Index i = 0; i < model.arms(); ++i) {
-        simulator.setpoints().set_pose(i, controller.end_effector_pose(i));
+        setpoints_at_equilibrium.set_pose(i, controller.end_effector_pose(i));
     }
     const LoadDistribution<ModelType> distribution =
         scenario.has_custom_weights()
@@ -401,74 +415,127 @@ ExperimentResult run_experiment(const Scenario& scenario, const ModelType& model
                                           typename LoadDistribution<ModelType>::InertiaWeights(scenario.inertia_weights))
             : LoadDistribution<ModelType>(model);
     const Vector6<double> gravity_wrench = model.object().gravity_wrench(model.gravity());  // h_g
-    using SetpointsType = Setpoints<double, ModelType::arms_at_compile_time>;
-    using DisturbancesType = Disturbances<double, ModelType::arms_at_compile_time>;
-    const auto inputs = [&](double time, SetpointsType& setpoints, DisturbancesType& disturbances) {
-        if (time == simulator.time()) {  // a controller tick: the state is the step's start state
-            grasp_kinematics(model, controller, simulator.state());
-            distribution.distribute(controller, gravity_wrench, setpoints);
-        }
-        disturbances.object = excitation(time);
-    };
-
-    ExperimentLog& log = result.log;
-    log.resize(steps, model.arms());
-    WrenchDecomposition<ModelType> decomposition(model);
     const Eigen::Vector3d p_eq = scenario.equilibrium.position;
     const Eigen::Quaterniond q_eq_inverse = scenario.equilibrium.orientation.conjugate();
-    Index n = 0;
-    const auto observer = [&](double time, const RigidBodyState<double>& state, const Data<ModelType>& data) {
-        log.time(n) = time - warmup_time;
-        log.applied.col(n) = excitation(time);
-        log.pose.col(n).template head<3>() = state.pose.position;
-        log.pose.col(n).template tail<4>() = state.pose.orientation.coeffs();
-        log.twist.col(n) = state.twist;
-        log.displacement.col(n).template head<3>() = state.pose.position - p_eq;
-        log.displacement.col(n).template tail<3>() = rotation_vector(state.pose.orientation * q_eq_inverse);
-        decompose_wrenches(model, data, decomposition);
-        for (Index i = 0; i < model.arms(); ++i) {
-            log.arm_wrenches.col(n).template segment<6>(18 * i) = data.end_effector_wrench(i);
-            log.arm_wrenches.col(n).template segment<6>(18 * i + 6) = decomposition.internal_wrench(i);
-            log.arm_wrenches.col(n).template segment<6>(18 * i + 12) = decomposition.external_wrench(i);
-        }
-        ++n;
-    };
-
-    const auto simulation_start = Clock::now();
     const std::string label = "simulating " + spec.title;
-    const Index total = warmup_steps + steps;
-    for (Index done = 0; done < warmup_steps;) {
-        const Index chunk = std::min<Index>(1000, warmup_steps - done);
-        simulator.run(chunk, inputs, [](double, const RigidBodyState<double>&, const Data<ModelType>&) {});
-        done += chunk;
-        progress.update(label, static_cast<double>(done) / static_cast<double>(total));
-    }
-    for (Index done = 0; done < steps;) {
-        const Index chunk = std::min<Index>(1000, steps - done);
-        simulator.run(chunk, inputs, observer);
-        done += chunk;
-        progress.update(label, static_cast<double>(warmup_steps + done) / static_cast<double>(total));
-    }
-    result.simulation_seconds = std::chrono::duration<double>(Clock::now() - simulation_start).count();
-    result.simulated_seconds = static_cast<double>(total) * dt;
-    result.warmup_seconds = warmup_time;
+    const int runs = options.runs;
 
-    // Sensors: the wrench passes the low-pass, then noise is added to wrench and pose.
-    log.measured_wrench = log.applied;
-    log.measured_displacement = log.displacement;
-    if (options.sensors.enabled) {
-        std::mt19937_64 random(options.seed * 7919ULL + seed_offset + 17ULL);
-        std::normal_distribution<double> normal(0.0, 1.0);
-        for (Index axis = 0; axis < 6; ++axis) {
-            lowpass_in_place(log.measured_wrench.row(axis), options.sensors.lowpass_hz, dt);
-            const double wrench_rms = axis < 3 ? options.sensors.force_rms : options.sensors.torque_rms;
-            const double pose_rms = axis < 3 ? options.sensors.position_rms : options.sensors.angle_rms;
-            for (Index k = 0; k < steps; ++k) {
-                log.measured_wrench(axis, k) += wrench_rms * normal(random);
-                log.measured_displacement(axis, k) += pose_rms * normal(random);
+    // One run with the disturbance sign * u(t), logged into `log`, then the sensor model with
+    // its own noise realisation (`noise_seed`): the runs' noises are independent.
+    const auto simulate = [&](double sign, int run, ExperimentLog& log, unsigned long long noise_seed) {
+        Simulator<ModelType> simulator(model, dt, initial, Integrator::runge_kutta_4);
+        for (Index i = 0; i < model.arms(); ++i) {
+            simulator.setpoints().set_pose(i, setpoints_at_equilibrium.pose(i));
+        }
+        Data<ModelType> tick(model);
+        const auto inputs = [&](double time, SetpointsType& setpoints, DisturbancesType& disturbances) {
+            if (time == simulator.time()) {  // a controller tick: the state is the step's start state
+                grasp_kinematics(model, tick, simulator.state());
+                distribution.distribute(tick, gravity_wrench, setpoints);
+            }
+            disturbances.object = sign * excitation(time);
+        };
+
+        log.resize(steps, model.arms());
+        WrenchDecomposition<ModelType> decomposition(model);
+        Index n = 0;
+        const auto observer = [&](double time, const RigidBodyState<double>& state, const Data<ModelType>& data) {
+            log.time(n) = time - warmup_time;
+            log.applied.col(n) = sign * excitation(time);
+            log.pose.col(n).template head<3>() = state.pose.position;
+            log.pose.col(n).template tail<4>() = state.pose.orientation.coeffs();
+            log.twist.col(n) = state.twist;
+            log.displacement.col(n).template head<3>() = state.pose.position - p_eq;
+            log.displacement.col(n).template tail<3>() = rotation_vector(state.pose.orientation * q_eq_inverse);
+            decompose_wrenches(model, data, decomposition);
+            for (Index i = 0; i < model.arms(); ++i) {
+                log.arm_wrenches.col(n).template segment<6>(18 * i) = data.end_effector_wrench(i);
+                log.arm_wrenches.col(n).template segment<6>(18 * i + 6) = decomposition.internal_wrench(i);
+                log.arm_wrenches.col(n).template segment<6>(18 * i + 12) = decomposition.external_wrench(i);
+            }
+            ++n;
+        };
+
+        const Index total = runs * (warmup_steps + steps);
+        const Index before = run * (warmup_steps + steps);
+        for (Index done = 0; done < warmup_steps;) {
+            const Index chunk = std::min<Index>(1000, warmup_steps - done);
+            simulator.run(chunk, inputs, [](double, const RigidBodyState<double>&, const Data<ModelType>&) {});
+            done += chunk;
+            progress.update(label, static_cast<double>(before + done) / static_cast<double>(total));
+        }
+        for (Index done = 0; done < steps;) {
+            const Index chunk = std::min<Index>(1000, steps - done);
+            simulator.run(chunk, inputs, observer);
+            done += chunk;
+            progress.update(label, static_cast<double>(before + warmup_steps + done) / static_cast<double>(total));
+        }
+
+        // Sensors: the wrench passes the low-pass, then noise is added to wrench and pose.
+        log.measured_wrench = log.applied;
+        log.measured_displacement = log.displacement;
+        if (options.sensors.enabled) {
+            std::mt19937_64 random(noise_seed);
+            std::normal_distribution<double> normal(0.0, 1.0);
+            for (Index axis = 0; axis < 6; ++axis) {
+                lowpass_in_place(log.measured_wrench.row(axis), options.sensors.lowpass_hz, dt);
+                const double wrench_rms = axis < 3 ? options.sensors.force_rms : options.sensors.torque_rms;
+                const double pose_rms = axis < 3 ? options.sensors.position_rms : options.sensors.angle_rms;
+                for (Index k = 0; k < steps; ++k) {
+                    log.measured_wrench(axis, k) += wrench_rms * normal(random);
+                    log.measured_displacement(axis, k) += pose_rms * normal(random);
+                }
             }
         }
+    };
+
+    // Paired excitation and amplitude extrapolation. The response of the (smooth,
+    // time-invariant) cooperative system to the disturbance s u(t) expands in Volterra terms
+    //     y(s u) = s y1 + s^2 y2 + s^3 y3 + s^4 y4 + s^5 y5 + ...,
+    // y1 the response of the linearisation (52) that the identification fits. The even-order
+    // terms (gyroscopic torques, the rotation-vector kinematics, the springs' geometry, all
+    // quadratic in the motion) do not change sign with s, so the odd part
+    //     z(s) = (y(+s u) - y(-s u)) / 2 = s y1 + s^3 y3 + s^5 y5 + ...
+    // is free of every even-order distortion, exactly. The third-order terms (sin theta of the
+    // springs, products of three rotations) remain and make the best linear fit depend on the
+    // amplitude, in proportion to s^2; Richardson extrapolation over the amplitudes 1 and 2,
+    //     (4 z(1) - z(2) / 2) / 3 = y1 - 4 y5 + ...,
+    // removes them too. The identification uses this combination of the measured signals
+    // (wrench and displacement, each as measured in its run: noise and low-pass included, the
+    // low-pass is linear). Runs: 4 = +u, -u, +2u, -2u (default); 2 = +u, -u, the odd part z(1);
+    // 1 = +u only. The logged run is +u. The combination's noise gain (RMS, against one run's
+    // noise) is sqrt(2 (2/3)^2 + 2 (1/12)^2) = 0.95 with 4 runs, sqrt(1/2) with 2.
+    ExperimentLog& log = result.log;
+    const unsigned long long noise_seed = options.seed * 7919ULL + seed_offset + 17ULL;
+    const auto simulation_start = Clock::now();
+    simulate(1.0, 0, log, noise_seed);
+    log.identification_wrench = log.measured_wrench;
+    log.identification_displacement = log.measured_displacement;
+    if (options.runs > 1) {
+        // Independent noise realisations per run.
+        const auto combine = [&](double sign, int run, double weight) {
+            ExperimentLog other;
+            simulate(sign, run, other, noise_seed ^ (0x9E3779B97F4A7C15ULL * static_cast<unsigned long long>(run)));
+            log.identification_wrench += weight * other.measured_wrench;
+            log.identification_displacement += weight * other.measured_displacement;
+        };
+        if (options.runs == 2) {
+            combine(-1.0, 1, -1.0);  // z(1) = (y(+u) - y(-u)) / 2
+            log.identification_wrench *= 0.5;
+            log.identification_displacement *= 0.5;
+        } else {
+            // (4 z(1) - z(2) / 2) / 3 = (2/3) (y(+u) - y(-u)) - (1/12) (y(+2u) - y(-2u))
+            combine(-1.0, 1, -1.0);
+            log.identification_wrench *= 2.0 / 3.0;
+            log.identification_displacement *= 2.0 / 3.0;
+            combine(2.0, 2, -1.0 / 12.0);
+            combine(-2.0, 3, 1.0 / 12.0);
+        }
     }
+    result.runs = runs;
+    result.simulation_seconds = std::chrono::duration<double>(Clock::now() - simulation_start).count();
+    result.simulated_seconds = static_cast<double>(runs * (warmup_steps + steps)) * dt;
+    result.warmup_seconds = warmup_time;
 
     // Cross-axis motion (single-axis experiments): RMS of the other axes' displacement over the
     // excited axis's, each translation scaled by K_ii so forces and torques compare.
@@ -482,10 +549,12 @@ ExperimentResult run_experiment(const Scenario& scenario, const ModelType& model
         result.cross_axis_motion = std::sqrt(other / own);
     }
 
-    // Identification from the logged (measured) force and pose alone.
+    // Identification from the logged (measured) force and pose alone: the combination of the
+    // runs (or the single run). The model's prediction is driven by the logged (+u) run's
+    // measured wrench, for comparison with its measured displacement.
     progress.update("identifying " + spec.title, 1.0);
     const auto identification_start = Clock::now();
-    result.fit = identify_diagonal_impedance(log.measured_displacement, log.measured_wrench, dt,
+    result.fit = identify_diagonal_impedance(log.identification_displacement, log.identification_wrench, dt,
                                              IdentificationOptions{}, spec.axes);
     for (Index axis = 0; axis < 6; ++axis) {
         const auto index = static_cast<std::size_t>(axis);

@@ -137,8 +137,11 @@ inline void print_table(const Scenario& scenario, const ExperimentResult& result
     const PaperExperiment* paper = paper_reference(scenario, result.spec.id);
     std::printf("\nExperiment %d of %d: %s  [scenario %s]\n", number, count, result.spec.title.c_str(),
                 scenario.name.c_str());
-    std::printf("  excitation: %s, force %.3g N, torque %.3g N m; log %.4g s at %.4g Hz%s; sensors: %s\n",
+    std::printf("  excitation: %s%s, force %.3g N, torque %.3g N m; log %.4g s at %.4g Hz%s; sensors: %s\n",
                 options.excitation == ExcitationKind::multisine ? "multisine (amplitudes RMS)" : "pushes (amplitudes peak)",
+                result.runs == 4   ? ", runs +-u, +-2u (identified: odd parts extrapolated to zero amplitude)"
+                : result.runs == 2 ? ", runs +-u (identified: odd part)"
+                                   : ", single run",
                 result.excitation_force, result.excitation_torque, options.duration, 1.0 / scenario.time_step,
                 result.warmup_seconds > 0.0 ? format(" after %.4g s of warm-up", result.warmup_seconds).c_str() : "",
                 options.sensors.enabled
@@ -200,9 +203,10 @@ inline void print_table(const Scenario& scenario, const ExperimentResult& result
         std::printf("\n");
         if (!options.sensors.enabled && rotation_axes > 1 && worst_block[0] < tolerance &&
             result.nominal_coupling < 1e-12) {
-            std::printf("  note: rotations about several axes at once couple at second order (gyroscopic terms, the\n"
-                        "  rotation-vector kinematics, the springs' geometry), which a diagonal linear model cannot\n"
-                        "  represent; the error is proportional to the rotation amplitude (--torque)\n");
+            std::printf("  note: rotations about several axes at once couple at second and third order (gyroscopic\n"
+                        "  terms, the rotation-vector kinematics, the springs' geometry), which a diagonal linear model\n"
+                        "  cannot represent; the error grows with the rotation amplitude (--torque)%s\n",
+                        result.runs == 4 ? "" : ";\n  the default excitation runs (--runs 4) cancel it");
         }
     }
     if (result.nominal_coupling < 1e-12) {
@@ -248,6 +252,12 @@ inline std::vector<std::string> log_columns(Eigen::Index arms)
     }
     for (const char* name : displacement) {
         columns.push_back(std::string("model_") + name);
+    }
+    for (const char* name : wrench) {
+        columns.push_back(std::string("ident_") + name);
+    }
+    for (const char* name : displacement) {
+        columns.push_back(std::string("ident_") + name);
     }
     for (Eigen::Index i = 0; i < arms; ++i) {
         const std::string arm = "arm" + std::to_string(i) + "_";
@@ -343,6 +353,8 @@ inline void write_log_csv(const std::filesystem::path& path, const ExperimentLog
         block(log.displacement);
         block(log.measured_displacement);
         block(log.model_displacement);
+        block(log.identification_wrench);
+        block(log.identification_displacement);
         block(log.arm_wrenches);
         csv.end_row();
     }

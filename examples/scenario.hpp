@@ -14,7 +14,7 @@
 //   scenarios/beam.json: arms[0].end_effector.mass: must be positive and finite, got -10
 #pragma once
 
-#include "coopdyn_include.hpp"
+#include <coopdyn/coopdyn.hpp>
 
 #include <nlohmann/json.hpp>
 

@@ -18,7 +18,7 @@
 #include "csv_table.hpp"
 #include "scenario.hpp"
 
-#include "coopdyn_include.hpp"
+#include <coopdyn/coopdyn.hpp>
 
 #include <CLI/CLI.hpp>
 
@@ -170,9 +170,17 @@ int identify_log(const CommandLine& command, const Scenario* scenario)
                                      std::to_string(n + 1) + "); resample the log to a fixed period first");
         }
     }
-    const std::array<const char*, 6> wrench{"meas_fx", "meas_fy", "meas_fz", "meas_tx", "meas_ty", "meas_tz"};
-    const std::array<const char*, 6> displacement{"meas_disp_x", "meas_disp_y", "meas_disp_z",
-                                                  "meas_rot_x",  "meas_rot_y",  "meas_rot_z"};
+    // A log written by this program has the signals its identification used (ident_*: the
+    // combination of its excitation runs); a real log has the measurements (meas_*).
+    const bool own_log = table.has("ident_fx");
+    const std::string prefix = own_log ? "ident_" : "meas_";
+    std::array<std::string, 6> wrench, displacement;
+    const std::array<const char*, 6> wrench_names{"fx", "fy", "fz", "tx", "ty", "tz"};
+    const std::array<const char*, 6> displacement_names{"disp_x", "disp_y", "disp_z", "rot_x", "rot_y", "rot_z"};
+    for (std::size_t axis = 0; axis < 6; ++axis) {
+        wrench[axis] = prefix + wrench_names[axis];
+        displacement[axis] = prefix + displacement_names[axis];
+    }
     const auto samples = static_cast<Eigen::Index>(time.size());
     Eigen::Matrix<double, 6, Eigen::Dynamic> h = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, samples);
     Eigen::Matrix<double, 6, Eigen::Dynamic> x = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, samples);
@@ -196,9 +204,9 @@ int identify_log(const CommandLine& command, const Scenario* scenario)
         axes[axis] = true;
     }
     if (std::none_of(axes.begin(), axes.end(), [](bool a) { return a; })) {
-        throw std::runtime_error(command.identify_log +
-                                 ": no axis has both a non-zero wrench column (meas_fx .. meas_tz) and a displacement "
-                                 "column (meas_disp_x .. meas_rot_z) with finite values");
+        throw std::runtime_error(command.identify_log + ": no axis has both a non-zero wrench column (" + prefix +
+                                 "fx .. " + prefix + "tz) and a displacement column (" + prefix + "disp_x .. " +
+                                 prefix + "rot_z) with finite values");
     }
     const coopdyn::DiagonalImpedanceFit fit = coopdyn::identify_diagonal_impedance(x, h, period, {}, axes);
 
@@ -211,8 +219,8 @@ int identify_log(const CommandLine& command, const Scenario* scenario)
         coopdyn::grasp_kinematics(model, data, state);
         nominal = coopdyn::apparent_impedance(model, data);
     }
-    std::printf("identification of %s: %lld samples at %.6g Hz\n", command.identify_log.c_str(),
-                static_cast<long long>(samples), 1.0 / period);
+    std::printf("identification of %s: %lld samples at %.6g Hz, columns %s*\n", command.identify_log.c_str(),
+                static_cast<long long>(samples), 1.0 / period, prefix.c_str());
     std::printf("  %-6s %-18s %15s %13s %11s %14s\n", "axis", "parameter", "identified",
                 scenario != nullptr ? "nominal" : "", scenario != nullptr ? "error" : "", "output MSE");
     for (std::size_t axis = 0; axis < 6; ++axis) {
@@ -291,6 +299,14 @@ int main(int argc, char** argv)
         ->check(CLI::NonNegativeNumber)
         ->type_name("NEWTON_METRES");
     app.add_option("--seed", command.run.seed, "Seed of the excitation phases/pushes and of the sensor noise");
+    app.add_option("--runs", command.run.runs,
+                   "Excitation runs per experiment: 4 = +u, -u, +2u, -2u, identified on the odd parts extrapolated "
+                   "to zero amplitude (cancels the even- and third-order nonlinear distortion); 2 = +u, -u, odd "
+                   "part (even orders); 1 = a single run. The CSV logs hold the +u run")
+        ->check(CLI::IsMember({1, 2, 4}))
+        ->type_name("N");
+    bool single_run = false;
+    app.add_flag("--single-run", single_run, "Same as --runs 1");
     app.add_flag("--noise", command.run.sensors.enabled,
                  "Realistic sensors: white noise on wrench and pose, and the force low-pass");
     app.add_option("--force-noise", command.run.sensors.force_rms, "Force noise with --noise [N RMS]")
@@ -313,7 +329,7 @@ int main(int argc, char** argv)
     app.add_flag("--quiet", quiet, "No progress line");
     app.add_option("--identify-log", command.identify_log,
                    "Only identify the impedance from an existing log (e.g. from real robots), no simulation; "
-                   "columns: time, meas_fx..meas_tz, meas_disp_x..meas_rot_z")
+                   "columns: time, meas_fx..meas_tz, meas_disp_x..meas_rot_z (or ident_* when present)")
         ->type_name("CSV");
     app.add_flag("--list-scenarios", command.list_scenarios, "List the shipped scenario files and exit");
 
@@ -324,6 +340,9 @@ int main(int argc, char** argv)
         return code == 0 ? 0 : exit_usage;
     }
     command.plots = !no_plots;
+    if (single_run) {
+        command.run.runs = 1;
+    }
     command.run.progress = !quiet;
     command.scenario_given = scenario_option->count() > 0;
     command.run.excitation = command.excitation == "push" ? ExcitationKind::push : ExcitationKind::multisine;

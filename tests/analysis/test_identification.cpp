@@ -284,6 +284,45 @@ TEST(Identification, NoisyDataSeveralSeeds)
     EXPECT_LT(worst, 0.05);
 }
 
+TEST(Identification, LowSignalToNoiseFallsBackToMassSearch)
+{
+    // 10 mm position noise on a 7.5 mm RMS response (SNR 0.75). The noise on p, the regressor of
+    // m in the equation-error step, biases m towards zero, and for some noise realisations below
+    // zero: that used to throw ("do not determine a positive mass"). Now the output-error step
+    // starts from a search over the mass and must converge. Over 30 seeds the output-error
+    // estimate scatters by about 7 % (m) and 2 % (d, k), so the bounds are 25 % on m and 6 % on
+    // d and k per seed (about 3.5 standard deviations), and 10 % on the RMS of the mass errors.
+    const double position_rms = 1e-2;
+    int fallbacks = 0;
+    double mass_squares = 0.0;
+    const unsigned seeds = 30;
+    for (unsigned seed = 1; seed <= seeds; ++seed) {
+        Record record = multisine_record(kBeamTranslation, multisine(4.0));
+        add_noise(record, position_rms, 0.1, seed);
+        ImpedanceFit fit;
+        ASSERT_NO_THROW(fit = coopdyn::identify_impedance(record.position, record.force, kPeriod)) << "seed " << seed;
+        const Errors errors = relative_errors(fit.parameters(), kBeamTranslation);
+        mass_squares += errors.mass * errors.mass;
+        EXPECT_TRUE(fit.converged) << "seed " << seed;
+        EXPECT_GT(fit.mass, 0.0);
+        EXPECT_EQ(fit.equation_error_start, fit.equation_error.mass > 0.0);
+        if (!fit.equation_error_start) {
+            ++fallbacks;
+            report(("low SNR, mass search, seed " + std::to_string(seed)).c_str(), fit, kBeamTranslation);
+            EXPECT_LT(std::abs(errors.mass), 0.25) << "seed " << seed;
+            EXPECT_LT(std::abs(errors.damping), 0.06) << "seed " << seed;
+            EXPECT_LT(std::abs(errors.stiffness), 0.06) << "seed " << seed;
+            EXPECT_NEAR(fit.mean_squared_output_error / (position_rms * position_rms), 1.0, 0.05) << "seed " << seed;
+            EXPECT_TRUE(std::isinf(fit.equation_error_mean_squared_output_error));
+        }
+    }
+    const double mass_rms = std::sqrt(mass_squares / seeds);
+    std::printf("[low SNR] %d of %u seeds gave a non-positive equation-error mass; RMS mass error %.3f\n", fallbacks,
+                seeds, mass_rms);
+    EXPECT_GE(fallbacks, 3);  // the fallback path is exercised (seeds 6, 11, 13, 19, 30)
+    EXPECT_LT(mass_rms, 0.10);
+}
+
 // ---------------------------------------------------------------------------------------------
 // 3. Diagonal 6-DOF fit.
 

@@ -6,7 +6,7 @@
 // and command-line or scenario errors give a message and a non-zero exit code.
 #include "csv_table.hpp"
 
-#include "coopdyn_include.hpp"
+#include <coopdyn/coopdyn.hpp>
 
 #include <gtest/gtest.h>
 
@@ -164,11 +164,11 @@ TEST(TwoArmBeam, NoiseFreeIdentificationRecoversSection9ToFourDigits)
 
 TEST(TwoArmBeam, NoiseFreeSe3)
 {
-    // Several simultaneous rotations couple at second order (gyroscopic terms, rotation-vector
-    // kinematics, spring geometry), which the paper's diagonal linear model leaves out; the error
-    // of the diagonal fit is proportional to the rotation amplitude. At 0.01 N m the model holds to
-    // 4 significant digits in every axis; at the default 2 N m (about 6 mrad) the translations
-    // still do, and the rotations stay within 0.5 %.
+    // Several simultaneous rotations couple at second and third order (gyroscopic terms,
+    // rotation-vector kinematics, spring geometry), which the paper's diagonal linear model leaves
+    // out. The default excitation runs (+u, -u, +2u, -2u: odd parts, extrapolated to zero
+    // amplitude) cancel both, so every SE(3) value matches to 4 significant digits at the
+    // default 2 N m, as at 0.01 N m.
     const fs::path directory = fresh_directory("se3");
     const ProgramRun small = run_program(directory, "--experiment se3 --duration 3 --torque 0.01 --no-plots --quiet --output small");
     ASSERT_EQ(small.exit_code, 0) << small.output;
@@ -179,12 +179,41 @@ TEST(TwoArmBeam, NoiseFreeSe3)
 
     const ProgramRun large = run_program(directory, "--experiment se3 --duration 3 --no-plots --quiet --output large");
     ASSERT_EQ(large.exit_code, 0) << large.output;
-    const std::array<double, 2> worst_large = check_summary(directory / "large" / "beam_identification.csv", 18);
+    std::printf("%s", large.output.c_str());
+    EXPECT_TRUE(contains(large.output, "runs +-u, +-2u"));
+    EXPECT_TRUE(contains(large.output, "-> 4 significant digits"));
+    const fs::path summary_path = directory / "large" / "beam_identification.csv";
+    const std::array<double, 2> worst_large = check_summary(summary_path, 18);
     std::printf("[ se3 ] default torque, 3 s: largest error translations %.2g, rotations %.2g\n", worst_large[0],
                 worst_large[1]);
     EXPECT_LT(worst_large[0], 5e-5);
-    EXPECT_LT(worst_large[1], 5e-3);
-    EXPECT_TRUE(contains(large.output, "couple at second order"));
+    EXPECT_LT(worst_large[1], 5e-5);
+    const CsvTable summary(summary_path.string());
+    for (std::size_t row = 0; row < summary.rows(); ++row) {
+        EXPECT_LT(std::abs(summary.number(row, "relative_error")), 5e-5)
+            << summary.text(row, "axis") << " " << summary.text(row, "parameter");
+    }
+
+    // The identification repeated from the logged ident_* columns (the signals the program's
+    // identification used) gives the program's values.
+    const CsvTable log(directory / "large" / "beam_se3.csv");
+    const coopdyn::ImpedanceFit rot_x = coopdyn::identify_impedance(vector_of(column(log, "ident_rot_x")),
+                                                                    vector_of(column(log, "ident_tx")), 1e-3);
+    EXPECT_NEAR(rot_x.mass, 4.255, 5e-5 * 4.255);
+    EXPECT_NEAR(rot_x.damping, 77.6, 5e-5 * 77.6);
+    EXPECT_NEAR(rot_x.stiffness, 196.0, 5e-5 * 196.0);
+
+    // One run only (--single-run): the nonlinear coupling shows, in the rotations only.
+    const ProgramRun single = run_program(directory, "--experiment se3 --duration 3 --single-run --no-plots --quiet --output single");
+    ASSERT_EQ(single.exit_code, 0) << single.output;
+    EXPECT_TRUE(contains(single.output, "single run"));
+    const std::array<double, 2> worst_single = check_summary(directory / "single" / "beam_identification.csv", 18);
+    std::printf("[ se3 ] default torque, 3 s, single run: largest error translations %.2g, rotations %.2g\n",
+                worst_single[0], worst_single[1]);
+    EXPECT_LT(worst_single[0], 5e-5);
+    EXPECT_LT(worst_single[1], 5e-3);
+    EXPECT_GT(worst_single[1], 10.0 * worst_large[1]);
+    EXPECT_TRUE(contains(single.output, "couple at second and third order"));
 }
 
 TEST(TwoArmBeam, WithSensorNoiseAndLowPassWithinFivePercent)
@@ -197,11 +226,15 @@ TEST(TwoArmBeam, WithSensorNoiseAndLowPassWithinFivePercent)
     const std::array<double, 2> worst = check_summary(directory / "out" / "beam_identification.csv", 24);
     EXPECT_LT(worst[0], 0.05);
     EXPECT_LT(worst[1], 0.05);
-    // The output error is about the pose noise variance (0.1 mm, 1 mrad).
+    // The output error is about the variance of the pose noise (0.1 mm, 1 mrad) in the signals
+    // the identification uses: (2/3) (y(+u) - y(-u)) - (1/12) (y(+2u) - y(-2u)) of four runs
+    // with independent noise, so the noise variance is 2 (2/3)^2 + 2 (1/12)^2 = 0.903 times one
+    // run's.
+    const double noise_gain = 2.0 * (2.0 / 3.0) * (2.0 / 3.0) + 2.0 * (1.0 / 12.0) * (1.0 / 12.0);
     const CsvTable summary((directory / "out" / "beam_identification.csv").string());
     for (std::size_t row = 0; row < summary.rows(); ++row) {
         const bool rotation = contains(summary.text(row, "axis"), "rot");
-        const double variance = rotation ? 1e-6 : 1e-8;
+        const double variance = noise_gain * (rotation ? 1e-6 : 1e-8);
         EXPECT_NEAR(summary.number(row, "mean_squared_output_error") / variance, 1.0, 0.1) << summary.text(row, "axis");
         EXPECT_EQ(summary.text(row, "noise"), "1");
     }
@@ -223,11 +256,25 @@ TEST(TwoArmBeam, LogsAreCompleteAndConsistent)
     ASSERT_EQ(result.exit_code, 0) << result.output;
     const CsvTable log((directory / "out" / "beam_se3.csv").string());
     ASSERT_EQ(log.rows(), 2000u);
-    ASSERT_EQ(log.header().size(), 80u);
+    ASSERT_EQ(log.header().size(), 92u);
     for (const char* name : {"time", "dist_fx", "meas_tz", "pos_x", "quat_w", "vel_y", "omega_z", "disp_x", "rot_z",
-                             "meas_disp_y", "meas_rot_x", "model_disp_z", "model_rot_y", "arm0_fx", "arm0_int_tz",
-                             "arm1_ext_fy"}) {
+                             "meas_disp_y", "meas_rot_x", "model_disp_z", "model_rot_y", "ident_fx", "ident_tz",
+                             "ident_disp_x", "ident_rot_z", "arm0_fx", "arm0_int_tz", "arm1_ext_fy"}) {
         EXPECT_TRUE(log.has(name)) << name;
+    }
+    // Noise-free, the combination of the runs' wrenches is the logged (+u) disturbance itself,
+    // and the combined displacement differs from the +u run's only by the nonlinear terms (in the
+    // rotations, of second order: about theta^2, theta up to 30 mrad here).
+    const std::array<const char*, 6> ident_wrench{"ident_fx", "ident_fy", "ident_fz", "ident_tx", "ident_ty", "ident_tz"};
+    const std::array<const char*, 6> dist_wrench{"dist_fx", "dist_fy", "dist_fz", "dist_tx", "dist_ty", "dist_tz"};
+    const std::array<const char*, 6> ident_disp{"ident_disp_x", "ident_disp_y", "ident_disp_z",
+                                                "ident_rot_x",  "ident_rot_y",  "ident_rot_z"};
+    const std::array<const char*, 6> disp{"disp_x", "disp_y", "disp_z", "rot_x", "rot_y", "rot_z"};
+    for (std::size_t row = 0; row < log.rows(); ++row) {
+        for (std::size_t k = 0; k < 6; ++k) {
+            EXPECT_NEAR(log.number(row, ident_wrench[k]), log.number(row, dist_wrench[k]), 1e-9) << ident_wrench[k];
+            EXPECT_NEAR(log.number(row, ident_disp[k]), log.number(row, disp[k]), k < 3 ? 1e-8 : 1e-3) << ident_disp[k];
+        }
     }
     const std::array<const char*, 6> parts{"fx", "fy", "fz", "tx", "ty", "tz"};
     double worst_split = 0.0, worst_force = 0.0, worst_torque = 0.0, largest = 0.0;

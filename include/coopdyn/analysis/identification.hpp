@@ -23,7 +23,12 @@
 ///    extra linear unknowns instead of being read from a single noisy sample. The 5-column
 ///    regression is solved by Householder QR with column equilibration; its condition number
 ///    detects unexcited data. The result is slightly biased (trapezoidal rule, O((omega T)^2),
-///    and integrated noise); it is the starting point of step 2.
+///    and integrated noise); it is the starting point of step 2. At a low signal-to-noise ratio
+///    the noise on p (the regressor of m) biases m towards zero and can make it non-positive;
+///    step 2 then starts from a search over the mass instead: for each m on a logarithmic grid
+///    (a factor 10^6 either way of |m|, 2^(1/2) apart) the regression is solved for the other
+///    unknowns with m fixed (it stays linear), and the candidate whose simulation fits the data
+///    best is the start. Identification fails only if step 2 then does not converge.
 /// 2. Output error. The model is simulated from an initial state (p0, v0) with the measured force
 ///    and sum_n (p_model[n] - p[n])^2 is minimised over (m, d, k) and, by default, (p0, v0), by
 ///    Levenberg-Marquardt (Marquardt's diagonal scaling, Nielsen's damping update). The simulation
@@ -108,9 +113,14 @@ struct ImpedanceFit {
     /// true when a convergence test was met; false when max_iterations was reached or no
     /// decrease of the cost could be found (the estimate is then the best point found).
     bool converged = false;
-    /// Step 1: the equation-error (double integration) estimate, the starting point of step 2.
+    /// Step 1: the equation-error (double integration) estimate, the starting point of step 2
+    /// when its mass is positive. At a low signal-to-noise ratio its mass can be <= 0.
     ImpedanceParameters equation_error;
-    /// Mean squared output error of the equation-error model (with its initial state).
+    /// true: step 2 started from the equation-error estimate. false: that estimate had m <= 0 and
+    /// step 2 started from the best point of a search over the mass (see the file comment).
+    bool equation_error_start = true;
+    /// Mean squared output error of the equation-error model (with its initial state); +inf when
+    /// equation_error_start is false (a model with m <= 0 cannot be simulated).
     double equation_error_mean_squared_output_error = 0.0;
 
     /// The output-error estimate alone.
@@ -438,18 +448,15 @@ inline void check_identification_options(const IdentificationOptions& options, c
     }
 }
 
-/// Step 1: equation-error estimate by double integration (see the file comment). Returns
-/// (m, d, k, p0, v0). Throws when the regression is singular (unexcited data).
-inline Eigen::Matrix<double, 5, 1> equation_error_estimate(const Eigen::VectorXd& position,
-                                                           const Eigen::VectorXd& force, double sample_period,
-                                                           const std::string& context,
-                                                           const std::string& position_name,
-                                                           const std::string& force_name)
+/// The equation-error regression of step 1: columns [p, int p, int int p, 1, t] and the
+/// right-hand side int int f (cumulative trapezoidal rule, see the file comment).
+inline void equation_error_regression(const Eigen::VectorXd& position, const Eigen::VectorXd& force,
+                                      double sample_period, Eigen::MatrixXd& regressor, Eigen::VectorXd& rhs)
 {
     const Eigen::Index samples = position.size();
     const double half_period = 0.5 * sample_period;
-    Eigen::MatrixXd regressor(samples, 5);
-    Eigen::VectorXd rhs(samples);
+    regressor.resize(samples, 5);
+    rhs.resize(samples);
     double p1 = 0.0, p2 = 0.0, f1 = 0.0, f2 = 0.0;
     for (Eigen::Index n = 0; n < samples; ++n) {
         if (n > 0) {
@@ -467,6 +474,32 @@ inline Eigen::Matrix<double, 5, 1> equation_error_estimate(const Eigen::VectorXd
         regressor(n, 4) = static_cast<double>(n) * sample_period;
         rhs(n) = f2;
     }
+}
+
+/// (m, d, k, a, c) -> (m, d, k, p0, v0) with a = -m p0, c = -m v0 - d p0 (m != 0).
+inline Eigen::Matrix<double, 5, 1> initial_state_from_regression(double mass, double damping, double stiffness,
+                                                                 double offset, double slope)
+{
+    const double initial_position = -offset / mass;
+    const double initial_velocity = -(slope + damping * initial_position) / mass;
+    Eigen::Matrix<double, 5, 1> estimate;
+    estimate << mass, damping, stiffness, initial_position, initial_velocity;
+    return estimate;
+}
+
+/// Step 1: equation-error estimate by double integration (see the file comment). Returns the
+/// regression's solution (m, d, k, a, c); m may be <= 0 (low signal-to-noise ratio: noise on p
+/// biases the coefficient of p towards zero). Throws when the regression is singular
+/// (unexcited data) or its solution is not finite.
+inline Eigen::Matrix<double, 5, 1> equation_error_estimate(const Eigen::VectorXd& position,
+                                                           const Eigen::VectorXd& force, double sample_period,
+                                                           const std::string& context,
+                                                           const std::string& position_name,
+                                                           const std::string& force_name)
+{
+    Eigen::MatrixXd regressor;
+    Eigen::VectorXd rhs;
+    equation_error_regression(position, force, sample_period, regressor, rhs);
     // Dynamic-size small matrices below: fixed 5x5 SVDs trip GCC 12's -Warray-bounds false positives.
     const Eigen::VectorXd norms = regressor.colwise().norm().transpose();
     const char* const unexcited =
@@ -486,18 +519,76 @@ inline Eigen::Matrix<double, 5, 1> equation_error_estimate(const Eigen::VectorXd
         fail(context, position_name + "/" + force_name, problem.str());
     }
     const Eigen::VectorXd solution = qr.solve(rhs).cwiseQuotient(norms);
-    Eigen::Matrix<double, 5, 1> estimate;
-    const double mass = solution(0);
-    if (!(mass > 0.0) || !solution.allFinite()) {
-        std::ostringstream problem;
-        problem << "do not determine a positive mass: the equation-error estimate is m = " << mass
-                << " (the inertia is not excited, or the noise is too large)";
-        fail(context, position_name + "/" + force_name, problem.str());
+    if (!solution.allFinite()) {
+        fail(context, position_name + "/" + force_name, "give an equation-error estimate that is not finite");
     }
-    const double initial_position = -solution(3) / mass;
-    const double initial_velocity = -(solution(4) + solution(1) * initial_position) / mass;
-    estimate << mass, solution(1), solution(2), initial_position, initial_velocity;
-    return estimate;
+    Eigen::Matrix<double, 5, 1> result;
+    for (Eigen::Index i = 0; i < 5; ++i) {
+        result(i) = solution(i);
+    }
+    return result;
+}
+
+/// Starting point of step 2 when step 1 gives no positive mass (low signal-to-noise ratio).
+/// Profile over the mass: for a fixed m the equation-error regression is linear in the other
+/// unknowns, F2 - m p = d P1 + k P2 + a + c t, so every mass on a logarithmic grid
+/// m_j = m_ref 2^(j/2), j = -40 .. 40 (a factor 10^6 either way) gets its least-squares d, k and
+/// initial state, and the candidate whose simulated output fits the data best (the output-error
+/// cost `cost_of`, which is +inf for unusable models) is returned. m_ref = |m| of step 1, or, if
+/// that is 0, |k| / omega^2 at the geometric mean of the record's lowest and the Nyquist
+/// frequency. Throws when no candidate gives a finite simulation.
+template <typename CostFunction>
+Eigen::Matrix<double, 5, 1> mass_search_start(const Eigen::VectorXd& position, const Eigen::VectorXd& force,
+                                              double sample_period, const Eigen::Matrix<double, 5, 1>& step1,
+                                              bool estimate_initial_state, const CostFunction& cost_of,
+                                              const std::string& context, const std::string& what)
+{
+    Eigen::MatrixXd regressor;
+    Eigen::VectorXd rhs;
+    equation_error_regression(position, force, sample_period, regressor, rhs);
+    const Eigen::Index samples = position.size();
+    const Eigen::MatrixXd reduced = regressor.rightCols(4);
+    const Eigen::VectorXd norms = reduced.colwise().norm().transpose();
+    const Eigen::MatrixXd equilibrated = reduced * norms.cwiseInverse().asDiagonal();
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(equilibrated);
+    // beta(m) = beta_f - m beta_p: the reduced solution is affine in the mass.
+    const Eigen::VectorXd beta_f = qr.solve(rhs).cwiseQuotient(norms);
+    const Eigen::VectorXd beta_p = qr.solve(regressor.col(0)).cwiseQuotient(norms);
+
+    double reference = std::abs(step1(0));
+    if (!(reference > 0.0)) {
+        const double lowest = 2.0 * 3.14159265358979323846 / (static_cast<double>(samples) * sample_period);
+        const double nyquist = 3.14159265358979323846 / sample_period;
+        reference = std::abs(step1(2)) / (lowest * nyquist);
+    }
+    if (!(reference > 0.0) || !std::isfinite(reference)) {
+        fail(context, what, "do not determine the scale of the mass: step 1 gives m = 0 and k = 0");
+    }
+    Eigen::Matrix<double, 5, 1> best = Eigen::Matrix<double, 5, 1>::Zero();
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (int j = -40; j <= 40; ++j) {
+        const double mass = reference * std::exp2(0.5 * static_cast<double>(j));
+        const Eigen::VectorXd beta = beta_f - mass * beta_p;
+        Eigen::Matrix<double, 5, 1> candidate =
+            initial_state_from_regression(mass, beta(0), beta(1), beta(2), beta(3));
+        if (!estimate_initial_state) {
+            candidate(3) = position(0);
+            candidate(4) = 0.0;
+        }
+        if (!candidate.allFinite()) {
+            continue;
+        }
+        const double cost = cost_of(candidate);
+        if (cost < best_cost) {
+            best_cost = cost;
+            best = candidate;
+        }
+    }
+    if (!std::isfinite(best_cost)) {
+        fail(context, what,
+             "do not determine a positive mass: step 1 gives m <= 0 and no positive mass gives a finite simulation");
+    }
+    return best;
 }
 
 /// Steps 1 and 2 on validated samples.
@@ -519,14 +610,9 @@ inline ImpedanceFit identify_impedance_samples(const Eigen::VectorXd& position, 
         fail(context, force_name, "is identically zero: the scale of m, d and k is not determined");
     }
 
-    const Eigen::Matrix<double, 5, 1> start =
+    const Eigen::Matrix<double, 5, 1> step1 =
         equation_error_estimate(position, force, sample_period, context, position_name, force_name);
     const int parameters = options.estimate_initial_state ? 5 : 3;
-    Eigen::Matrix<double, 5, 1> theta = start;
-    if (!options.estimate_initial_state) {
-        theta(3) = position(0);
-        theta(4) = 0.0;
-    }
 
     const double* const p = position.data();
     const double* const f = force.data();
@@ -550,13 +636,26 @@ inline ImpedanceFit identify_impedance_samples(const Eigen::VectorXd& position, 
     };
 
     ImpedanceFit fit;
-    fit.equation_error = {start(0), start(1), start(2)};
+    fit.equation_error = {step1(0), step1(1), step1(2)};
+    fit.equation_error_start = step1(0) > 0.0;
+    Eigen::Matrix<double, 5, 1> theta;
+    if (fit.equation_error_start) {
+        theta = initial_state_from_regression(step1(0), step1(1), step1(2), step1(3), step1(4));
+        if (!options.estimate_initial_state) {
+            theta(3) = position(0);
+            theta(4) = 0.0;
+        }
+    } else {
+        theta = mass_search_start(position, force, sample_period, step1, options.estimate_initial_state, cost_at,
+                                  context, position_name + "/" + force_name);
+    }
     double cost = linearise_at(theta);
     if (!std::isfinite(cost)) {
         fail(context, position_name + "/" + force_name,
              "give an equation-error model whose simulation is not finite; the data do not fit m pdd + d pd + k p = f");
     }
-    fit.equation_error_mean_squared_output_error = cost / static_cast<double>(samples);
+    fit.equation_error_mean_squared_output_error =
+        (fit.equation_error_start ? cost : std::numeric_limits<double>::infinity()) / static_cast<double>(samples);
 
     // Levenberg-Marquardt with Marquardt's scaling diag(J^T J) and Nielsen's damping update.
     const double tolerance = options.tolerance;
@@ -565,10 +664,22 @@ inline ImpedanceFit identify_impedance_samples(const Eigen::VectorXd& position, 
     int iteration = 0;
     bool converged = false;
     const Eigen::Index n_parameters = parameters;
+    // The active block of the normal equations is copied element by element into dynamic-size
+    // objects, and the step is added index by index: expressions such as head(n) on the fixed
+    // 5-vectors with a run-time n make GCC 12 report false -Warray-bounds once inlined at -O2/-O3.
+    Eigen::MatrixXd h(n_parameters, n_parameters);
+    Eigen::VectorXd g(n_parameters);
+    Eigen::VectorXd active(n_parameters);
+    Eigen::VectorXd scale(n_parameters);
     while (!converged && iteration < options.max_iterations) {
-        const auto h = normal.topLeftCorner(n_parameters, n_parameters);
-        const auto g = gradient.head(n_parameters);
-        Eigen::VectorXd scale = h.diagonal();
+        for (Eigen::Index i = 0; i < n_parameters; ++i) {
+            g(i) = gradient(i);
+            active(i) = theta(i);
+            for (Eigen::Index j = 0; j < n_parameters; ++j) {
+                h(i, j) = normal(i, j);
+            }
+        }
+        scale = h.diagonal();
         const double largest = scale.maxCoeff();
         if (cost == 0.0 || !(largest > 0.0)) {
             converged = true;
@@ -582,7 +693,8 @@ inline ImpedanceFit identify_impedance_samples(const Eigen::VectorXd& position, 
             break;
         }
         ++iteration;
-        const Eigen::MatrixXd system = Eigen::MatrixXd(h) + damping_factor * Eigen::MatrixXd(scale.asDiagonal());
+        Eigen::MatrixXd system = h;
+        system.diagonal() += damping_factor * scale;
         const Eigen::VectorXd step = system.ldlt().solve(-g);
         if (!step.allFinite()) {
             damping_factor *= growth;
@@ -593,13 +705,14 @@ inline ImpedanceFit identify_impedance_samples(const Eigen::VectorXd& position, 
             continue;
         }
         Eigen::Matrix<double, 5, 1> candidate = theta;
-        candidate.head(n_parameters) += step;
+        for (Eigen::Index i = 0; i < n_parameters; ++i) {
+            candidate(i) += step(i);
+        }
         const double predicted = -2.0 * step.dot(g) - step.dot(h * step);
         const double candidate_cost = cost_at(candidate);
         const double actual = cost - candidate_cost;
         const double step_size = std::sqrt(step.cwiseAbs2().dot(scale));
-        const double parameter_size =
-            std::sqrt(theta.head(n_parameters).cwiseAbs2().dot(scale));
+        const double parameter_size = std::sqrt(active.cwiseAbs2().dot(scale));
         const bool small_reduction = predicted <= tolerance * cost && std::abs(actual) <= tolerance * cost;
         const bool small_step = step_size <= tolerance * parameter_size;
         if (actual > 0.0 && std::isfinite(candidate_cost)) {
@@ -625,6 +738,13 @@ inline ImpedanceFit identify_impedance_samples(const Eigen::VectorXd& position, 
         }
     }
 
+    if (!fit.equation_error_start && !converged) {
+        std::ostringstream problem;
+        problem << "do not determine a positive mass: the equation-error estimate is m = " << step1(0)
+                << " and the output-error fit started from a mass search did not converge in " << iteration
+                << " iterations (the inertia is not excited, or the noise is too large)";
+        fail(context, position_name + "/" + force_name, problem.str());
+    }
     fit.mass = theta(0);
     fit.damping = theta(1);
     fit.stiffness = theta(2);
@@ -688,7 +808,8 @@ Eigen::VectorXd simulate_impedance(const ImpedanceParameters& parameters, double
 /// \return the output-error estimate, its mean squared output error and the equation-error
 ///         estimate. Throws InvalidModel (a std::invalid_argument) naming the argument when the
 ///         sizes differ, N < 10, T or the data are not finite, the force is identically zero, or
-///         the data do not excite the dynamics (singular regression, no positive mass).
+///         the data do not excite the dynamics (singular regression; or no positive mass: step 1
+///         gives m <= 0 and step 2, started from a search over the mass, does not converge).
 template <typename DerivedP, typename DerivedF>
 ImpedanceFit identify_impedance(const Eigen::MatrixBase<DerivedP>& position, const Eigen::MatrixBase<DerivedF>& force,
                                 double sample_period, const IdentificationOptions& options = {})
