@@ -13,38 +13,11 @@
 // - physics: Theorem 1 (coordinated setpoints and the load distribution (26): no internal wrench,
 //   the end-effectors carry exactly the load) and a two-arm squeeze with an analytic answer.
 //
-// The allocation detectors are those of tests/dynamics/test_no_allocation.cpp (counting global
-// operator new; EIGEN_RUNTIME_NO_MALLOC with a redefined eigen_assert). Outside a counting window
-// a failed eigen_assert aborts, so Eigen's own checks stay active for every other test here.
+// The allocation detectors are those of tests/allocation_counter.hpp (counting global operator
+// new; EIGEN_RUNTIME_NO_MALLOC with a redefined eigen_assert that aborts outside a counting
+// window, so Eigen's own checks stay active for every other test here).
 
-#define EIGEN_RUNTIME_NO_MALLOC
-
-#include <atomic>
-#include <cstddef>
-#include <cstdio>
-#include <cstdlib>
-#include <new>
-
-namespace allocation_counter {
-inline std::atomic<bool> counting{false};
-inline std::atomic<long> operator_new_calls{0};
-inline std::atomic<long> eigen_assert_failures{0};
-
-/// Inside a counting window: count (an Eigen heap allocation trips the malloc check). Outside:
-/// behave like a real assertion, also in Release builds.
-inline void record_eigen_assert_failure(const char* condition, const char* file, int line) noexcept
-{
-    if (counting.load()) {
-        ++eigen_assert_failures;
-        return;
-    }
-    std::fprintf(stderr, "eigen_assert failed: %s (%s:%d)\n", condition, file, line);
-    std::abort();
-}
-}  // namespace allocation_counter
-
-#define eigen_assert(x) \
-    ((x) ? static_cast<void>(0) : ::allocation_counter::record_eigen_assert_failure(#x, __FILE__, __LINE__))
+#include "../allocation_counter.hpp"
 
 #include "coopdyn/analysis/internal_wrenches.hpp"
 #include "coopdyn/coordination/kinematic_coordination.hpp"
@@ -68,79 +41,6 @@ inline void record_eigen_assert_failure(const char* condition, const char* file,
 template struct coopdyn::WrenchDecomposition<coopdyn::Model<double, 2>>;
 template struct coopdyn::WrenchDecomposition<
     coopdyn::Model<double, coopdyn::Dynamic, coopdyn::ResolvedAccelerationEndEffector>>;
-
-// ---------------------------------------------------------------------------------------------
-// Replaced global allocation functions (they count only inside a counting window).
-namespace {
-
-void* allocate(std::size_t size) noexcept
-{
-    if (allocation_counter::counting.load()) {
-        ++allocation_counter::operator_new_calls;
-    }
-    return std::malloc(size == 0 ? 1 : size);
-}
-
-void* allocate_aligned(std::size_t size, std::align_val_t alignment) noexcept
-{
-    if (allocation_counter::counting.load()) {
-        ++allocation_counter::operator_new_calls;
-    }
-    const std::size_t align = static_cast<std::size_t>(alignment);
-    const std::size_t rounded = ((size == 0 ? 1 : size) + align - 1) / align * align;
-    return std::aligned_alloc(align, rounded);
-}
-
-void* allocate_or_throw(std::size_t size)
-{
-    void* pointer = allocate(size);
-    if (pointer == nullptr) {
-        throw std::bad_alloc();
-    }
-    return pointer;
-}
-
-void* allocate_aligned_or_throw(std::size_t size, std::align_val_t alignment)
-{
-    void* pointer = allocate_aligned(size, alignment);
-    if (pointer == nullptr) {
-        throw std::bad_alloc();
-    }
-    return pointer;
-}
-
-}  // namespace
-
-void* operator new(std::size_t size) { return allocate_or_throw(size); }
-void* operator new[](std::size_t size) { return allocate_or_throw(size); }
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return allocate(size); }
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return allocate(size); }
-void* operator new(std::size_t size, std::align_val_t alignment) { return allocate_aligned_or_throw(size, alignment); }
-void* operator new[](std::size_t size, std::align_val_t alignment)
-{
-    return allocate_aligned_or_throw(size, alignment);
-}
-void* operator new(std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept
-{
-    return allocate_aligned(size, alignment);
-}
-void* operator new[](std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept
-{
-    return allocate_aligned(size, alignment);
-}
-
-void operator delete(void* pointer) noexcept { std::free(pointer); }
-void operator delete[](void* pointer) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::size_t) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::size_t) noexcept { std::free(pointer); }
-void operator delete(void* pointer, const std::nothrow_t&) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, const std::nothrow_t&) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::align_val_t) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::align_val_t) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::size_t, std::align_val_t) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::size_t, std::align_val_t) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::align_val_t, const std::nothrow_t&) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::align_val_t, const std::nothrow_t&) noexcept { std::free(pointer); }
 
 namespace {
 
@@ -750,25 +650,9 @@ TEST(DecomposeWrenches, TwoIdenticalArmsStretchingABeamAnalytic)
 // ---------------------------------------------------------------------------------------------
 // D. No allocation in the full per-tick path.
 
-struct Allocations {
-    long operator_new = 0;
-    long eigen = 0;
-};
-
-/// Run f with both detectors armed; no gtest assertion may run inside.
-template <typename F> Allocations count_allocations(F&& f)
-{
-    allocation_counter::operator_new_calls = 0;
-    allocation_counter::eigen_assert_failures = 0;
-    Eigen::internal::set_is_malloc_allowed(false);
-    allocation_counter::counting = true;
-    f();
-    allocation_counter::counting = false;
-    Eigen::internal::set_is_malloc_allowed(true);
-    return {allocation_counter::operator_new_calls.load(), allocation_counter::eigen_assert_failures.load()};
-}
-
-void* volatile sink = nullptr;
+using allocation_counter::Allocations;
+using allocation_counter::count_allocations;
+using allocation_counter::sink;
 
 TEST(NoAllocationSanity, DetectorsFire)
 {

@@ -1,30 +1,10 @@
 // The per-tick path allocates nothing once Model and Data are built (DESIGN.md section 3).
 //
-// Two independent detectors, both active inside a counting window:
-// - every replaceable global operator new / new[] (plain, nothrow, aligned) is replaced here
-//   and counts its calls: catches std::vector, std::string, std::function, ...;
-// - Eigen allocates its dynamic storage with std::malloc, not operator new, so that is caught
-//   with EIGEN_RUNTIME_NO_MALLOC: Eigen::internal::set_is_malloc_allowed(false) makes every Eigen
-//   heap allocation fail an eigen_assert, which this file redefines to count instead of abort
-//   (so it works in Release builds, where eigen_assert is normally compiled out).
-// Both detectors are shown to fire by the Sanity tests.
+// The detectors (tests/allocation_counter.hpp) count calls of the replaced global operator new
+// and Eigen heap allocations (EIGEN_RUNTIME_NO_MALLOC) inside a counting window; the Sanity tests
+// show that both fire.
 
-#define EIGEN_RUNTIME_NO_MALLOC
-
-#include <atomic>
-#include <cstddef>
-#include <cstdlib>
-#include <new>
-
-namespace allocation_counter {
-inline std::atomic<bool> counting{false};
-inline std::atomic<long> operator_new_calls{0};
-inline std::atomic<long> eigen_assert_failures{0};
-
-inline void record_eigen_assert_failure() noexcept { ++eigen_assert_failures; }
-}  // namespace allocation_counter
-
-#define eigen_assert(x) ((x) ? static_cast<void>(0) : ::allocation_counter::record_eigen_assert_failure())
+#include "../allocation_counter.hpp"
 
 #include "coopdyn/dynamics/cooperative_dynamics.hpp"
 #include "coopdyn/dynamics/interaction_wrenches.hpp"
@@ -38,102 +18,13 @@ inline void record_eigen_assert_failure() noexcept { ++eigen_assert_failures; }
 
 #include <vector>
 
-// ---------------------------------------------------------------------------------------------
-// Replaced global allocation functions.
-namespace {
-
-void* allocate(std::size_t size) noexcept
-{
-    if (allocation_counter::counting.load()) {
-        ++allocation_counter::operator_new_calls;
-    }
-    return std::malloc(size == 0 ? 1 : size);
-}
-
-void* allocate_aligned(std::size_t size, std::align_val_t alignment) noexcept
-{
-    if (allocation_counter::counting.load()) {
-        ++allocation_counter::operator_new_calls;
-    }
-    const std::size_t align = static_cast<std::size_t>(alignment);
-    const std::size_t rounded = ((size == 0 ? 1 : size) + align - 1) / align * align;
-    return std::aligned_alloc(align, rounded);
-}
-
-void* allocate_or_throw(std::size_t size)
-{
-    void* pointer = allocate(size);
-    if (pointer == nullptr) {
-        throw std::bad_alloc();
-    }
-    return pointer;
-}
-
-void* allocate_aligned_or_throw(std::size_t size, std::align_val_t alignment)
-{
-    void* pointer = allocate_aligned(size, alignment);
-    if (pointer == nullptr) {
-        throw std::bad_alloc();
-    }
-    return pointer;
-}
-
-}  // namespace
-
-void* operator new(std::size_t size) { return allocate_or_throw(size); }
-void* operator new[](std::size_t size) { return allocate_or_throw(size); }
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return allocate(size); }
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return allocate(size); }
-void* operator new(std::size_t size, std::align_val_t alignment) { return allocate_aligned_or_throw(size, alignment); }
-void* operator new[](std::size_t size, std::align_val_t alignment)
-{
-    return allocate_aligned_or_throw(size, alignment);
-}
-void* operator new(std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept
-{
-    return allocate_aligned(size, alignment);
-}
-void* operator new[](std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept
-{
-    return allocate_aligned(size, alignment);
-}
-
-void operator delete(void* pointer) noexcept { std::free(pointer); }
-void operator delete[](void* pointer) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::size_t) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::size_t) noexcept { std::free(pointer); }
-void operator delete(void* pointer, const std::nothrow_t&) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, const std::nothrow_t&) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::align_val_t) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::align_val_t) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::size_t, std::align_val_t) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::size_t, std::align_val_t) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::align_val_t, const std::nothrow_t&) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::align_val_t, const std::nothrow_t&) noexcept { std::free(pointer); }
-
 namespace {
 
 using namespace coopdyn_test;
 
-struct Allocations {
-    long operator_new = 0;
-    long eigen = 0;
-};
-
-/// Run f with both detectors armed; no gtest assertion may run inside.
-template <typename F> Allocations count_allocations(F&& f)
-{
-    allocation_counter::operator_new_calls = 0;
-    allocation_counter::eigen_assert_failures = 0;
-    Eigen::internal::set_is_malloc_allowed(false);
-    allocation_counter::counting = true;
-    f();
-    allocation_counter::counting = false;
-    Eigen::internal::set_is_malloc_allowed(true);
-    return {allocation_counter::operator_new_calls.load(), allocation_counter::eigen_assert_failures.load()};
-}
-
-void* volatile sink = nullptr;
+using allocation_counter::Allocations;
+using allocation_counter::count_allocations;
+using allocation_counter::sink;
 
 // ---------------------------------------------------------------------------------------------
 // The detectors work.
