@@ -38,6 +38,7 @@ namespace {
 using coopdyn_test::hat;
 using coopdyn_test::literal_constraint_bias;
 using coopdyn_test::literal_grasp_matrix;
+using coopdyn_test::literal_internal_wrench;
 using coopdyn_test::Matrix3d;
 using coopdyn_test::MatrixXd;
 using coopdyn_test::random_offsets;
@@ -221,59 +222,6 @@ template <typename ModelType> ModelType build_model(const MatrixXd& offsets_body
 template <typename ModelType> MatrixXd world_offsets(const ModelType& model, const Quat& orientation)
 {
     return rotation_matrix(orientation) * MatrixXd(model.grasp_offsets_body());
-}
-
-// ---------------------------------------------------------------------------------------------
-// Literal (53): the reduced system's constraint wrench from explicit relative constraints
-// ---------------------------------------------------------------------------------------------
-
-/// A' (6(N-1) x 6N), arm 1 (index 0) against arm i: pdd_i - pdd_1 + S(r_i - r_1) wd_1 = b'_i,
-/// wd_i - wd_1 = 0, from the rigid grasp (11)-(12) (errata E5: 6(N-1) rows).
-MatrixXd relative_constraint_matrix(const MatrixXd& r)
-{
-    const Index arms = r.cols();
-    MatrixXd a = MatrixXd::Zero(6 * (arms - 1), 6 * arms);
-    for (Index i = 1; i < arms; ++i) {
-        const Index row = 6 * (i - 1);
-        a.block(row, 0, 3, 3) = -Matrix3d::Identity();
-        a.block(row, 3, 3, 3) = hat(r.col(i) - r.col(0));
-        a.block(row + 3, 3, 3, 3) = -Matrix3d::Identity();
-        a.block(row, 6 * i, 6, 6).setIdentity();
-    }
-    return a;
-}
-
-/// b' (6(N-1)): [w x (w x (r_i - r_1)); 0].
-VectorXd relative_constraint_bias(const MatrixXd& r, const Vector3d& omega)
-{
-    const Index arms = r.cols();
-    VectorXd b = VectorXd::Zero(6 * (arms - 1));
-    for (Index i = 1; i < arms; ++i) {
-        b.segment(6 * (i - 1), 3) = omega.cross(omega.cross(Vector3d(r.col(i) - r.col(0))));
-    }
-    return b;
-}
-
-/// Literal (53) via the KKT conditions of Gauss' principle for the reduced system driven by
-/// `commanded` (6N): M' xdd - A'^T mu = commanded, A' xdd = b'; h'_int = M' xdd - commanded.
-VectorXd literal_internal_wrench(const MatrixXd& ee_inertia, const MatrixXd& r, const Vector3d& omega,
-                                 const VectorXd& commanded)
-{
-    const Index arms = r.cols();
-    const Index n = 6 * arms;
-    const Index m = 6 * (arms - 1);
-    const MatrixXd a = relative_constraint_matrix(r);
-    MatrixXd kkt = MatrixXd::Zero(n + m, n + m);
-    for (Index i = 0; i < arms; ++i) {
-        kkt.block(6 * i, 6 * i, 6, 6) = ee_inertia.block(0, 6 * i, 6, 6);
-    }
-    const MatrixXd inertia = kkt.topLeftCorner(n, n);
-    kkt.topRightCorner(n, m) = -a.transpose();
-    kkt.bottomLeftCorner(m, n) = a;
-    VectorXd rhs(n + m);
-    rhs << commanded, relative_constraint_bias(r, omega);
-    const VectorXd solution = kkt.partialPivLu().solve(rhs);
-    return inertia * solution.head(n) - commanded;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 
 #include <random>
 
@@ -153,6 +154,60 @@ template <typename DerivedA, typename DerivedB>
 double relative_error(const Eigen::MatrixBase<DerivedA>& a, const Eigen::MatrixBase<DerivedB>& b)
 {
     return static_cast<double>((a - b).norm() / b.norm());
+}
+
+// Literal (53), shared by the coordination tests: the reduced system's constraint wrench from
+// explicit relative constraints.
+
+/// A' of (53): 6(N-1) x 6N relative constraints of arm 1 (index 0) against arm i. From the rigid
+/// grasp (11)-(12) with d_i = r_i - r_1: pdd_i - pdd_1 + S(d_i) wd_1 = w x (w x d_i),
+/// wd_i - wd_1 = 0 (errata E5: 6(N-1) rows).
+inline MatrixXd relative_constraint_matrix(const MatrixXd& r)
+{
+    const Index arms = r.cols();
+    MatrixXd a = MatrixXd::Zero(6 * (arms - 1), 6 * arms);
+    for (Index i = 1; i < arms; ++i) {
+        const Index row = 6 * (i - 1);
+        a.block(row, 0, 3, 3) = -Matrix3d::Identity();
+        a.block(row, 3, 3, 3) = hat(r.col(i) - r.col(0));
+        a.block(row + 3, 3, 3, 3) = -Matrix3d::Identity();
+        a.block(row, 6 * i, 6, 6).setIdentity();
+    }
+    return a;
+}
+
+/// b' of (53), 6(N-1): [w x (w x (r_i - r_1)); 0].
+inline VectorXd relative_constraint_bias(const MatrixXd& r, const Vector3d& omega)
+{
+    const Index arms = r.cols();
+    VectorXd b = VectorXd::Zero(6 * (arms - 1));
+    for (Index i = 1; i < arms; ++i) {
+        b.segment(6 * (i - 1), 3) = omega.cross(omega.cross(Vector3d(r.col(i) - r.col(0))));
+    }
+    return b;
+}
+
+/// Literal (53): the constraint wrench of the reduced system (end-effectors only, inertia
+/// blkdiag(M_i) given as 6 x 6N) driven by `commanded` (6N), from the KKT conditions of Gauss'
+/// principle: M' xdd - A'^T mu = commanded, A' xdd = b'; h'_int = M' xdd - commanded.
+inline VectorXd literal_internal_wrench(const MatrixXd& ee_inertia, const MatrixXd& r, const Vector3d& omega,
+                                 const VectorXd& commanded)
+{
+    const Index arms = r.cols();
+    const Index n = 6 * arms;
+    const Index m = 6 * (arms - 1);
+    const MatrixXd a = relative_constraint_matrix(r);
+    MatrixXd kkt = MatrixXd::Zero(n + m, n + m);
+    for (Index i = 0; i < arms; ++i) {
+        kkt.block(6 * i, 6 * i, 6, 6) = ee_inertia.block(0, 6 * i, 6, 6);
+    }
+    const MatrixXd inertia = kkt.topLeftCorner(n, n);
+    kkt.topRightCorner(n, m) = -a.transpose();
+    kkt.bottomLeftCorner(m, n) = a;
+    VectorXd rhs(n + m);
+    rhs << commanded, relative_constraint_bias(r, omega);
+    const VectorXd solution = kkt.fullPivLu().solve(rhs);
+    return inertia * solution.head(n) - commanded;
 }
 
 }  // namespace coopdyn_test
