@@ -1,4 +1,4 @@
-// The experiments of the two-arm beam example (paper Section V, MODEL.md section 9): excitation
+// The experiments of the two-arm beam example (paper Section V, docs/analysis.md): excitation
 // signals, the sensor model, the simulation with its 1 kHz log, and the grey-box identification
 // of the apparent impedance from the logged wrench and pose alone.
 //
@@ -6,7 +6,7 @@
 // object's equilibrium, and the object's weight is carried through the desired wrenches, h_o^d =
 // h_g distributed by the non-squeezing load distribution (26) at every 1 ms controller tick from
 // the pose at that tick. A disturbance wrench htilde_o (a multisine or human-like pushes) acts on
-// the object. The simulation is coopdyn's Simulator (full model of MODEL.md section 5, RK4).
+// the object. The simulation is coopdyn's Simulator (full model of docs/dynamics.md, RK4).
 #pragma once
 
 #include "scenario.hpp"

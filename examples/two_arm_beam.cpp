@@ -1,5 +1,5 @@
-// The main job: the paper's two-arm beam experiment (Erhart & Hirche 2016, Section V; MODEL.md
-// section 9) in simulation, with identification, logs and plots.
+// The main job: the paper's two-arm beam experiment (Erhart & Hirche 2016, Section V;
+// docs/analysis.md, docs/two-arm-beam.md) in simulation, with identification, logs and plots.
 //
 // Two impedance-controlled arms hold a 1 m aluminium beam at 1 kHz. Three experiments, as in the
 // paper: translation along x, rotation about z, and the full SE(3) case. Each applies a

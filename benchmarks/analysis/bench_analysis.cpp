@@ -1,4 +1,4 @@
-// Benchmarks of the coordination and analysis layer (MODEL.md sections 6-9), per call:
+// Benchmarks of the coordination and analysis layer (docs/coordination.md, docs/analysis.md), per call:
 //
 //   BM_LoadDistribution<N>     LoadDistribution::distribute: h'^d = -G+_M h_o^d (26), O(N)
 //   BM_WrenchDecomposition<N>  decompose_wrenches: internal (53) and external (54) parts of h'

@@ -1,4 +1,4 @@
-// Benchmarks of the per-tick interaction solve (MODEL.md section 5, paper (18)):
+// Benchmarks of the per-tick interaction solve (docs/dynamics.md, paper (18)):
 //
 //   BM_BlockDiagonalKernel / BM_BlockDiagonalDynamic  structured solver, M_i = diag(m_i I3, J_i)
 //   BM_GeneralKernel / BM_GeneralDynamic              structured solver, general SPD 6x6 M_i

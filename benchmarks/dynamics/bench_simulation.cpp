@@ -1,4 +1,4 @@
-// Simulated time per wall-clock time of the paper's two-arm beam (MODEL.md section 9; the main
+// Simulated time per wall-clock time of the paper's two-arm beam (docs/analysis.md; the main
 // job examples/two_arm_beam): N = 2 fixed, RK4, 1 kHz, logging off. Target: >= 2000x real time,
 // i.e. 20 s of simulation in <= 10 ms.
 //
@@ -8,7 +8,7 @@
 //                             wrenches redistributed by (26) at every tick
 //   BM_Step                   one RK4 step (four evaluations of the dynamics and the update)
 //   BM_InteractionWrench      one interaction_dynamics: grasp kinematics, impedance law, hSigma,
-//                             structured interaction solve (MODEL.md section 5)
+//                             structured interaction solve (docs/dynamics.md)
 //   BM_InternalExternal       one decompose_wrenches: internal/external split (53)-(54) (analysis)
 //   BM_LoadDistribution       one grasp_kinematics + LoadDistribution::distribute (26)
 //

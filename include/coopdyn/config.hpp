@@ -1,7 +1,7 @@
 /// \file
 /// \brief Common types and compile-time size helpers shared by every coopdyn header.
 ///
-/// Sizes follow MODEL.md section 0: the object and N end-effectors make N + 1 bodies; stacked
+/// Sizes follow docs/conventions.md: the object and N end-effectors make N + 1 bodies; stacked
 /// twists, accelerations and wrenches have 6(N + 1) entries, the end-effector part alone 6N.
 /// `Eigen::Dynamic` (N chosen at run time) passes through every helper unchanged.
 #pragma once

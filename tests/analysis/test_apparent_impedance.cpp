@@ -1,6 +1,6 @@
-// Tests of include/coopdyn/analysis/apparent_impedance.hpp (Theorem 2, MODEL.md sections 9-10,
+// Tests of include/coopdyn/analysis/apparent_impedance.hpp (Theorem 2, docs/analysis.md,
 // errata E3). Every check compares against something the code was not derived from:
-//   1. the worked numbers of MODEL.md section 9 (example after Theorem 2, the Section V beam);
+//   1. the worked numbers of docs/analysis.md (example after Theorem 2, the Section V beam);
 //   2. central finite differences and forward-mode automatic differentiation of the exact
 //      restoring wrench (K), finite differences of the spring potential (the restoring wrench
 //      itself), and the printed (33)-(34) form shown to miss them (E3);
@@ -58,7 +58,7 @@ using State = coopdyn::RigidBodyState<double>;
 constexpr double pi = 3.14159265358979323846;
 
 // ---------------------------------------------------------------------------------------------
-// Helpers, written from the definitions (MODEL.md sections 0-4), not from the library.
+// Helpers, written from the definitions (docs/conventions.md, docs/spatial.md, docs/model.md), not from the library.
 // ---------------------------------------------------------------------------------------------
 
 /// Rotation matrix of a unit quaternion, written out.
@@ -197,7 +197,7 @@ Vector3d world_offset(const ArmParameters& arm, const Quaterniond& object_orient
 }
 
 // ---------------------------------------------------------------------------------------------
-// 1. Worked numbers of MODEL.md section 9
+// 1. Worked numbers of docs/analysis.md
 // ---------------------------------------------------------------------------------------------
 
 Matrix6d diagonal6(double a, double b, double c, double d, double e, double f)
@@ -260,7 +260,7 @@ TEST(ApparentImpedanceWorkedNumbers, ExampleAfterTheorem2)
     EXPECT_EQ(from_model.damping, kernel.damping);
 }
 
-/// The Section V beam of MODEL.md section 9: beam along y, J_o_body = diag(0.055, 0, 0.055).
+/// The Section V beam of docs/analysis.md: beam along y, J_o_body = diag(0.055, 0, 0.055).
 struct BeamParameters {
     coopdyn::RigidObject<double> object;
     std::vector<ArmParameters> arms;
@@ -929,7 +929,7 @@ TEST(ApparentImpedanceReducedModel, MatchesTheFullModelForTheGravityCompensatedB
 }
 
 // ---------------------------------------------------------------------------------------------
-// 5. Energy balance and passivity (Lemma 1, MODEL.md section 10)
+// 5. Energy balance and passivity (Lemma 1, docs/analysis.md)
 // ---------------------------------------------------------------------------------------------
 
 struct EnergyBalance {

@@ -205,7 +205,7 @@ void report(const char* name, const ImpedanceFit& fit, const Oscillator& truth)
                 fit.equation_error_mean_squared_output_error, fit.iterations, fit.converged ? 1 : 0);
 }
 
-const Oscillator kBeamTranslation{21.75, 360.0, 600.0};  // MODEL.md section 9, (56)-(61)
+const Oscillator kBeamTranslation{21.75, 360.0, 600.0};  // docs/analysis.md, (56)-(61)
 const Oscillator kBeamRotation{4.255, 77.6, 196.0};
 
 // ---------------------------------------------------------------------------------------------

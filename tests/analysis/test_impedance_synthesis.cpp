@@ -1,14 +1,14 @@
 // Tests of coopdyn/analysis/impedance_synthesis.hpp: per-arm gains for a requested apparent object
-// stiffness K and damping D (Theorem 2 read backwards, MODEL.md section 9 with errata E3), and
+// stiffness K and damping D (Theorem 2 read backwards, docs/analysis.md with errata E3), and
 // classical damping.
 //
 // References, none of which the synthesis was derived from:
 // - round trip through apparent_impedance (31)-(32), E3: targets produced from known random
 //   positive gains on non-symmetric grasps must come back (gains and matrices);
-// - the worked numbers of MODEL.md section 9 (two-arm examples, section V beam);
+// - the worked numbers of docs/analysis.md (two-arm examples, section V beam);
 // - for unreachable targets, the optimality (Kuhn-Tucker) conditions of the non-negative least
 //   squares fit, evaluated on the cone generators written out from the block formula of
-//   MODEL.md section 9 in this file;
+//   docs/analysis.md in this file;
 // - for classical damping, the generalized eigenproblem K v = w^2 M v (Eigen's
 //   GeneralizedSelfAdjointEigenSolver), the commutator D M^-1 K - K M^-1 D, and the scalar
 //   formula d = 2 zeta sqrt(m k) for diagonal M, K.
@@ -41,7 +41,7 @@ using Model2 = coopdyn::Model<double, 2>;
 // Literal references.
 
 /// T(r) = [[I3, S(r)^T], [S(r), S(r) S(r)^T]]: one arm's unit translational gain at the object
-/// (block formula of MODEL.md section 9).
+/// (block formula of docs/analysis.md).
 Matrix6d literal_translational_generator(const Vector3d& r)
 {
     const Matrix3d s = hat(r);
@@ -58,7 +58,7 @@ Matrix6d literal_rotational_generator()
     return result;
 }
 
-/// K = sum_i k_i T(r_i) + (sum_i kappa_i) R (MODEL.md section 9, E3), for any signs of the gains.
+/// K = sum_i k_i T(r_i) + (sum_i kappa_i) R (docs/analysis.md, E3), for any signs of the gains.
 Matrix6d literal_object_matrix(const MatrixXd& r, const VectorXd& translational, double total_rotational)
 {
     Matrix6d result = total_rotational * literal_rotational_generator();

@@ -1,11 +1,11 @@
 // Tests of coopdyn/analysis/internal_wrenches.hpp: internal and external end-effector wrenches,
-// paper (53)-(54), MODEL.md section 8 with errata E5; plus the allocation-free "full tick"
+// paper (53)-(54), docs/analysis.md with errata E5; plus the allocation-free "full tick"
 // (coordination, load distribution, interaction dynamics, wrench decomposition).
 //
 // References, none of which the code under test was derived from (it uses the structured
 // reduced-coordinate form of section 8):
 // - the literal (53): M' = blkdiag(M_1..M_N), A' with 6(N-1) relative constraints (arm 1 against
-//   arm i, derived in literal_relative_constraint from MODEL.md section 4), b' from the
+//   arm i, derived in literal_relative_constraint from docs/model.md), b' from the
 //   centripetal terms, h'_int = M'^(1/2) (A' M'^(-1/2))^+ (b' - A' M'^-1 h'^x) with the symmetric
 //   square root (SelfAdjointEigenSolver) and a CompleteOrthogonalDecomposition pseudo-inverse;
 // - the KKT system of the same constrained least-squares problem (Gauss's principle);
@@ -95,7 +95,7 @@ MatrixXd assemble_end_effector_inertia(const MatrixXd& stack)
 
 /// A' xdd' = b' of (53): 6(N-1) relative constraints (errata E5), arm 1 against arm i.
 ///
-/// Derivation from MODEL.md section 4: a common rigid acceleration a = [a_lin; alpha] of the
+/// Derivation from docs/model.md: a common rigid acceleration a = [a_lin; alpha] of the
 /// object's reference point gives xdd_i = G_i^T a + b_i, i.e.
 ///     wd_i  = alpha,
 ///     pdd_i = a_lin + alpha x r_i + w x (w x r_i).

@@ -1,6 +1,6 @@
-// Tests of include/coopdyn/analysis/stability.hpp (Theorems 3-4, Corollary 1; MODEL.md section 10,
+// Tests of include/coopdyn/analysis/stability.hpp (Theorems 3-4, Corollary 1; docs/analysis.md,
 // errata E4). References the code was not derived from:
-//   - the per-axis closed forms of the Section V beam (MODEL.md section 9): omega = sqrt(k/m),
+//   - the per-axis closed forms of the Section V beam (docs/analysis.md): omega = sqrt(k/m),
 //     zeta = d / (2 sqrt(k m)), poles -zeta omega +- i omega sqrt(1 - zeta^2);
 //   - the characteristic polynomial det(M s^2 + D s + K) of (52) (a second eigenvalue method),
 //     and Vieta's product of its roots, det K / det M;
@@ -175,7 +175,7 @@ System random_system(Index arms_count, Rng& rng)
     return make_system(object, arms, equilibrium);
 }
 
-/// The Section V beam (MODEL.md section 9), beam along y, J_o_body = diag(0.055, 0, 0.055);
+/// The Section V beam (docs/analysis.md), beam along y, J_o_body = diag(0.055, 0, 0.055);
 /// the gains can be changed to make an underdamped variant.
 System section_five_beam(double damping = 180.0, double rotational_damping = 10.0)
 {
@@ -537,7 +537,7 @@ TEST(StabilityClassicalDamping, ZeroForTheSymmetricBeamNonzeroForAnAsymmetricGra
                                                 coopdyn::linearised_eigenvalues(asymmetric.impedance),
                                                 std::vector<double>(12, 1e-10), within);
     std::printf("[ E4 ] |D M^-1 K - K M^-1 D|: beam %.2e (relative %.1e); asymmetric two-arm grasp %.1f (relative "
-                "%.3f; MODEL.md quotes 540 for its own case); modal-ratio poles miss the true poles by %.1f%%\n",
+                "%.3f; docs/errata.md quotes 540 for its own case); modal-ratio poles miss the true poles by %.1f%%\n",
                 beam_commutator, beam_commutator / beam_scale, commutator, commutator / scale, 100.0 * modal_miss);
     EXPECT_LE(beam_commutator, 1e-14 * beam_scale);
     EXPECT_GT(commutator, 1e-2 * scale);

@@ -1,7 +1,7 @@
 // Tests of the kinematic coordination (include/coopdyn/coordination/kinematic_coordination.hpp):
 // end-effector setpoints from a desired object motion (27) and the tracking feed-forward
 // h_o^d = M_o xdd_o^d + C_o xdot_o^d + h_g, then Theorem 1 in a full-model simulation together
-// with the load distribution (26) (MODEL.md section 7).
+// with the load distribution (26) (docs/coordination.md).
 //
 // References the code was not derived from:
 //  - the literal grasp matrix G and bias b of random_systems.hpp, and the rigid-grasp poses

@@ -1,6 +1,6 @@
 // Tests of the load distribution (include/coopdyn/coordination/load_distribution.hpp): the
 // weighted generalized inverse G+_M of paper (25) with errata E2 and the centroid shift of
-// MODEL.md section 6, the desired end-effector wrenches (26), and the LoadDistribution class.
+// docs/coordination.md, the desired end-effector wrenches (26), and the LoadDistribution class.
 //
 // Every check compares with something the code was not derived from:
 //  - the literal grasp matrix G (24) of random_systems.hpp: G G+_M = I6;
@@ -77,7 +77,7 @@ Weights random_weights(Index arms, Rng& rng)
 
 /// Random non-symmetric grasp offsets with a common shift, so that the weighted centroid
 /// sum m*_i r_i / m*_o lies well away from the object's centre of mass (exercises the shift of
-/// MODEL.md section 6).
+/// docs/coordination.md).
 MatrixXd off_centre_offsets(Index arms, Rng& rng)
 {
     MatrixXd r = random_offsets(arms, rng);
@@ -152,7 +152,7 @@ MatrixXd literal_equation_25(const MatrixXd& r, const Weights& weights, bool pri
 double max_abs(const MatrixXd& m) { return m.cwiseAbs().maxCoeff(); }
 
 /// Literal (53) in its printed pseudo-inverse form, M'^(1/2) (A' M'^(-1/2))^+ (b' - A' M'^-1 h),
-/// with the Cholesky factor as the square root (MODEL.md section 5): a cross-check of the KKT form.
+/// with the Cholesky factor as the square root (docs/dynamics.md): a cross-check of the KKT form.
 VectorXd pseudo_inverse_internal_wrench(const MatrixXd& ee_inertia, const MatrixXd& r, const Vector3d& omega,
                                         const VectorXd& commanded)
 {

@@ -1,5 +1,5 @@
 // The Model/Data algorithm interaction_dynamics (dynamics/cooperative_dynamics.hpp) against an
-// independent recomputation from MODEL.md sections 1-5: grasp kinematics written out with
+// independent recomputation from docs/spatial.md, docs/model.md, docs/dynamics.md: grasp kinematics written out with
 // quaternion algebra by hand, the impedance law (1)/(5)/(6) with a rotation-matrix stiffness
 // torque kappa sin(theta) u, the resolved-acceleration law (20), hSigma_o with gravity (E1), and
 // the generic Udwadia-Kalaba solve of the assembled system.

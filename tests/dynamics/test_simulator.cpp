@@ -1,7 +1,7 @@
 // Tests of coopdyn::Simulator (include/coopdyn/dynamics/simulator.hpp) against physical
-// invariants and closed forms that the implementation was not derived from (MODEL.md sections
-// 0-5, 9-10): energy conservation, free fall, momentum conservation, the rigid-grasp constraint,
-// the order of convergence of both integrators, the steady state of the section 9 beam, and the
+// invariants and closed forms that the implementation was not derived from (docs/conventions.md,
+// docs/model.md, docs/dynamics.md, docs/analysis.md): energy conservation, free fall, momentum conservation, the rigid-grasp constraint,
+// the order of convergence of both integrators, the steady state of the Section V beam, and the
 // observer contract of Simulator::run.
 //
 // Set-ups are deliberately non-symmetric: three arms at asymmetric (seeded random) offsets with
@@ -317,7 +317,7 @@ TEST(SimulatorEnergy, SemiImplicitEulerEnergyErrorStaysBounded)
     const ConservativeSystem system = ConservativeSystem::build(2024u);
     // Bound: symplectic Euler on an oscillator of frequency w conserves a modified energy
     // H~ = E - (h/2) w^2 x v, so |E - H~| / E <= h w / 2 without growth. Linearised about the loaded
-    // state, the fastest mode of this system is below ~20 rad/s (K of MODEL.md section 9 against
+    // state, the fastest mode of this system is below ~20 rad/s (K of docs/analysis.md against
     // the composite inertia; checked below), so h w / 2 < 1e-2 at h = 1 ms. The tumbling object
     // and the rotations make the scheme only approximately symplectic, hence we also require the
     // error not to grow: the worst deviation over the second five seconds is at most twice that of
@@ -360,7 +360,7 @@ TEST(SimulatorEnergy, SemiImplicitEulerEnergyErrorStaysBounded)
 // 2. Free fall
 // ---------------------------------------------------------------------------------------------
 //
-// In the model only the object carries gravity (h_g in hSigma_o, MODEL.md section 3); the
+// In the model only the object carries gravity (h_g in hSigma_o, docs/model.md); the
 // impedance end-effectors (1) have no gravity term (gravity-compensated arms). Two closed forms:
 //  (a) pure model, zero stiffness and damping: the only external force on the assembly is m_o g,
 //      so its centre of mass accelerates at m_o g / (m_o + sum m_i) -- not at g. If the
@@ -670,7 +670,7 @@ TEST(SimulatorConvergence, RungeKutta4IsFourthOrderAndSemiImplicitEulerFirstOrde
 }
 
 // ---------------------------------------------------------------------------------------------
-// 6. The beam of MODEL.md section 9, held still and pushed
+// 6. The beam of docs/analysis.md, held still and pushed
 // ---------------------------------------------------------------------------------------------
 
 struct Beam {
@@ -731,7 +731,7 @@ TEST(SimulatorBeam, GravityCompensatedBeamIsHeldStill)
 TEST(SimulatorBeam, PushedBeamSettlesAtTheApparentStiffness)
 {
     const Beam beam = section9_beam();
-    // K = diag(600 I3, 196, 100, 196) (MODEL.md section 9): K_xx = 2 k = 600,
+    // K = diag(600 I3, 196, 100, 196) (docs/analysis.md): K_xx = 2 k = 600,
     // K_zz = 2 kappa + 2 k 0.4^2 = 196. A 10 N force in x and a 1 Nm torque about z are applied
     // together: for this symmetric grasp (r_1 = -r_2, equal arms) a translation d and a rotation
     // about z do not couple in the restoring wrench (sum k (R - I) r_i = 0 and

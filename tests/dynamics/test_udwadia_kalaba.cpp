@@ -1,4 +1,4 @@
-// coopdyn::udwadia_kalaba (MODEL.md section 5, paper (18)-(19)) against references it was not
+// coopdyn::udwadia_kalaba (docs/dynamics.md, paper (18)-(19)) against references it was not
 // derived from: the KKT system of the constrained dynamics, direct minimisation of Gauss's
 // function over a null-space parameterisation of the constraint manifold, and the independent
 // subsystem of redundant / rank-deficient constraints.

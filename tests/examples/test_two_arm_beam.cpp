@@ -1,6 +1,6 @@
 // End-to-end tests of the main job, examples/two_arm_beam: the program is run as a user would run
 // it (short durations), its CSV output is parsed, and the identified apparent impedance is checked
-// against MODEL.md section 9 (the paper's (56), (59), (61)). Also: the CSV logs are complete and
+// against docs/analysis.md (the paper's (56), (59), (61)). Also: the CSV logs are complete and
 // consistent (total = internal + external, internal wrenches do no work on the object), the
 // identification can be repeated from the logged columns alone, the other shipped scenarios run,
 // and command-line or scenario errors give a message and a non-zero exit code.
@@ -73,7 +73,7 @@ ProgramRun run_program(const fs::path& directory, const std::string& arguments, 
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
-// MODEL.md section 9: nominal values (56), (59), (61) and the paper's identified ones (57), (60), (62).
+// docs/analysis.md: nominal values (56), (59), (61) and the paper's identified ones (57), (60), (62).
 struct Expected {
     double nominal;
     double paper_identified;
@@ -96,7 +96,7 @@ const std::map<std::string, std::array<Expected, 3>>& section9()
 
 int parameter_index(const std::string& name) { return name == "inertia" ? 0 : name == "damping" ? 1 : 2; }
 
-/// Checks every row of a beam identification summary against MODEL.md section 9; returns the
+/// Checks every row of a beam identification summary against docs/analysis.md; returns the
 /// largest relative error of the identified values, per block (translations, rotations).
 std::array<double, 2> check_summary(const fs::path& path, std::size_t expected_rows)
 {

@@ -1,4 +1,4 @@
-// Tests of coopdyn/model/grasp.hpp (MODEL.md section 4, paper (10)-(14), (23)-(24)).
+// Tests of coopdyn/model/grasp.hpp (docs/model.md, paper (10)-(14), (23)-(24)).
 //
 // Reference: exact rigid-body motion of an object, p_i(t) = p_o(t) + R(t) r_i_body, differentiated
 // numerically (fourth-order central stencils). The grasp matrix is checked through the power

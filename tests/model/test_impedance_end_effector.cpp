@@ -1,5 +1,5 @@
 // Tests of coopdyn/model/impedance_end_effector.hpp and resolved_acceleration_end_effector.hpp
-// (MODEL.md section 2, paper (1), (5), (6), (20)).
+// (docs/model.md, paper (1), (5), (6), (20)).
 //
 // References: central finite differences of the potential on SO(3) (perturbations built with
 // Eigen::AngleAxis), closed forms kappa (1 - cos theta), and literal re-implementations of (6)

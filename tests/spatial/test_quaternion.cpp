@@ -1,4 +1,4 @@
-// Tests of coopdyn/spatial/quaternion.hpp (MODEL.md section 1, paper (2)-(5), errata E6).
+// Tests of coopdyn/spatial/quaternion.hpp (docs/spatial.md, paper (2)-(5), errata E6).
 //
 // Every reference here is independent of the code under test: exact rotations are built with
 // Eigen::AngleAxis, kinematics are integrated with a Runge-Kutta scheme written in this file, and

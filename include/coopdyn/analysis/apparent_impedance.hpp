@@ -1,5 +1,5 @@
 /// \file
-/// \brief Apparent object impedance of the cooperative system (Theorem 2, MODEL.md section 9,
+/// \brief Apparent object impedance of the cooperative system (Theorem 2, docs/analysis.md,
 /// errata E3): inertia (31), damping (32), the exact linearised stiffness, the exact nonlinear
 /// restoring wrench and the apparent Coriolis/centrifugal wrench of the reduced model (30).
 ///
@@ -173,7 +173,7 @@ Vector6<typename ModelType::Scalar> reduced_model_acceleration(
     return impedance.inertia.llt().solve(wrench);
 }
 
-/// \brief Storage function of Lemma 1 (MODEL.md section 10):
+/// \brief Storage function of Lemma 1 (docs/analysis.md):
 /// V = 1/2 xdot_o^T M xdot_o + sum_i U_i, at the state in `data`, for the setpoint poses.
 template <typename ModelType>
 typename ModelType::Scalar storage_function(

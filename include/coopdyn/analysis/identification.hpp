@@ -1,6 +1,6 @@
 /// \file
 /// \brief Grey-box identification of the apparent object impedance from logged motion and
-/// wrench (the experiment of the paper's section V; MODEL.md section 9).
+/// wrench (the experiment of the paper's section V; docs/analysis.md).
 ///
 /// The identified model is the 1-DOF projection of the linearised object dynamics (52), i.e. of
 /// the reduced model (30) without its Coriolis term (quadratic in the twist) and with the exact
@@ -797,7 +797,7 @@ Eigen::VectorXd simulate_impedance(const ImpedanceParameters& parameters, double
 }
 
 /// \brief Grey-box identification of one axis of the apparent impedance: fits
-/// m pdd + d pd + k p = f (the 1-DOF projection of (30)/(52), MODEL.md section 9) to uniformly
+/// m pdd + d pd + k p = f (the 1-DOF projection of (30)/(52), docs/analysis.md) to uniformly
 /// sampled data by equation error (double integration) followed by output-error
 /// Levenberg-Marquardt (see the file comment for the method).
 /// \param position p[n], N >= 10 samples (vector), displacement from the equilibrium (metres, or

@@ -1,6 +1,6 @@
 /// \file
 /// \brief Impedance synthesis: per-arm stiffness and damping gains that give the object a desired
-/// apparent stiffness K and damping D (Theorem 2 read backwards, MODEL.md section 9 with errata
+/// apparent stiffness K and damping D (Theorem 2 read backwards, docs/analysis.md with errata
 /// E3). Not in the reference papers. A design-time tool: double precision, allocates freely,
 /// throws on invalid input; nothing here is meant for the per-tick path.
 ///
@@ -191,7 +191,7 @@ inline Eigen::Matrix<double, 21, 1> symmetric_entries(const Matrix6<double>& mat
 }
 
 /// T(r) = G_i diag(I3, 0) G_i^T = [[I3, S(r)^T], [S(r), S(r) S(r)^T]]: the object matrix of a
-/// unit translational gain at grasp offset r (MODEL.md section 9).
+/// unit translational gain at grasp offset r (docs/analysis.md).
 inline Matrix6<double> unit_translational_contribution(const Vector3<double>& r_i)
 {
     Matrix6<double> unit = Matrix6<double>::Zero();
@@ -255,7 +255,7 @@ inline void require_achievable(const SynthesisResult<double>& gains, const std::
 
 }  // namespace detail
 
-/// \brief Non-negative per-arm gains whose apparent object matrix (MODEL.md section 9, E3) is
+/// \brief Non-negative per-arm gains whose apparent object matrix (docs/analysis.md, E3) is
 /// closest to `target`: the kernel of synthesize_stiffness / synthesize_damping.
 /// \param r 3 x N grasp offsets r_i in {w} (from the object's centre of mass).
 /// \param target 6x6 desired object stiffness K (or damping D), in {w} about the centre of mass.
@@ -334,7 +334,7 @@ SynthesisResult<double> synthesize_damping(const ModelType& model, const Data<Mo
 }
 
 /// \brief Damping matrix that gives every mode of (M, K) the damping ratio zeta (classical
-/// damping; compare MODEL.md section 10 and errata E4):
+/// damping; compare docs/analysis.md and errata E4):
 /// D = 2 zeta M^(1/2) (M^(-1/2) K M^(-1/2))^(1/2) M^(1/2).
 /// For the M-normalised modes K v = w^2 M v this gives v^T D v = 2 zeta w and v_j^T D v_k = 0
 /// (j != k), and D M^-1 K = K M^-1 D. The result is generally not reachable by per-arm scalar

@@ -1,5 +1,5 @@
 /// \file
-/// \brief Internal and external end-effector wrenches (paper (53)-(54), MODEL.md section 8,
+/// \brief Internal and external end-effector wrenches (paper (53)-(54), docs/analysis.md,
 /// errata E5).
 ///
 /// The internal wrench is the part of the end-effector wrenches that squeezes the object without
@@ -15,7 +15,7 @@
 ///
 ///     (sum_i G_i M_i G_i^T) a_v = sum_i G_i (h_i^x - M_i b_i),    h_int,i = M_i (G_i^T a_v + b_i) - h_i^x.
 ///
-/// This is exactly the object-free case of the interaction solve (MODEL.md section 5), so it
+/// This is exactly the object-free case of the interaction solve (docs/dynamics.md), so it
 /// reuses that code. Properties: G h'_int = 0 (internal wrenches do no work on rigid motions,
 /// Definition 1); h'_int = 0 whenever the commanded motion is rigid; G h'_ext = G h'.
 ///

@@ -1,6 +1,6 @@
 /// \file
 /// \brief Stability and modes of the linearised object dynamics (52) M dxdd + D dxd + K dx = h
-/// (Theorems 3-4, Corollary 1; MODEL.md section 10, errata E4).
+/// (Theorems 3-4, Corollary 1; docs/analysis.md, errata E4).
 ///
 /// M, D, K symmetric positive definite make (52) asymptotically stable. The paper's Theorem 4
 /// also claims classical damping, D M^-1 K = K M^-1 D; that holds for symmetric set-ups only

@@ -1,6 +1,6 @@
 /// \file
 /// \brief Kinematic coordination (27) and the tracking feed-forward of Theorem 1
-/// (MODEL.md section 7).
+/// (docs/coordination.md).
 ///
 /// From a desired object motion (pose, twist, acceleration), every end-effector's desired motion
 /// follows from the rigid grasp: x_i^d from (38), xdot_i^d = G_i^T xdot_o^d (27) and

@@ -1,6 +1,6 @@
 /// \file
 /// \brief Non-squeezing load distribution: the weighted generalized inverse of the grasp matrix
-/// (paper (25), errata E2) and the desired end-effector wrenches (26); MODEL.md section 6.
+/// (paper (25), errata E2) and the desired end-effector wrenches (26); docs/coordination.md.
 ///
 /// Weights: positive m*_i (scalar, "mass-like") and symmetric positive semi-definite J*_i (3x3,
 /// "rotational inertia-like", in {w}). With the weighted centroid c = sum m*_i r_i / m*_o and
@@ -14,7 +14,7 @@
 /// wrench is first shifted from the centre of mass to c (t_c = t_o - c x f). The result satisfies
 /// G G+_M = I6 for every grasp, and distributes the wrench as the rigid motion of bodies with
 /// those inertias would: with the end-effector inertias as weights (m*_i = m_i, J*_i = J_i) it
-/// produces no internal wrench (MODEL.md section 8).
+/// produces no internal wrench (docs/analysis.md).
 #pragma once
 
 #include "coopdyn/config.hpp"
@@ -147,7 +147,7 @@ void validate_load_distribution_weights(const Eigen::MatrixBase<DerivedR>& r,
 }  // namespace detail
 
 /// \brief Weighted generalized inverse G+_M of the grasp matrix, 6N x 6, paper (25) with errata
-/// E2 and the centroid shift of MODEL.md section 6, so that G G+_M = I6 for any grasp.
+/// E2 and the centroid shift of docs/coordination.md, so that G G+_M = I6 for any grasp.
 /// \param r 3 x N grasp offsets in {w}.
 /// \param mass_weights N positive weights m*_i.
 /// \param inertia_weights 3 x 3N, the weights J*_i (symmetric positive semi-definite) side by side.

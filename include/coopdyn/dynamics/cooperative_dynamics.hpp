@@ -1,6 +1,6 @@
 /// \file
 /// \brief Per-tick algorithms on the cooperative Model/Data: grasp kinematics and the
-/// interaction dynamics (MODEL.md sections 2-5; the block scheme of paper Fig. 2).
+/// interaction dynamics (docs/model.md, docs/dynamics.md; the block scheme of paper Fig. 2).
 #pragma once
 
 #include "coopdyn/config.hpp"
@@ -12,7 +12,7 @@
 
 namespace coopdyn {
 
-/// \brief Rigid-grasp kinematics (MODEL.md section 4, paper (10)): from the object state, fill
+/// \brief Rigid-grasp kinematics (docs/model.md, paper (10)): from the object state, fill
 /// data.object_state, object_rotation, object_rotational_inertia (J_o in {w}), grasp_offsets
 /// (r_i = R(q_o) r_i_body), end-effector poses (p_i = p_o + r_i, q_i = q_o (x) dq_i) and twists
 /// (xdot_i = G_i^T xdot_o). noexcept; allocation-free.
@@ -37,7 +37,7 @@ void grasp_kinematics(const ModelType& model, Data<ModelType>& data,
 
 /// \brief One tick of the cooperative dynamics: grasp kinematics, the end-effector motion
 /// wrenches h_i^x (6) (or h_i^Pi (20)), hSigma_i = h_i^x - h_i^d + htilde_i (15), hSigma_o (16)
-/// with gravity (E1), then the structured interaction solve (MODEL.md section 5).
+/// with gravity (E1), then the structured interaction solve (docs/dynamics.md).
 ///
 /// Fills every field of `data`; returns data.wrenches = [h_o; h_1; ...; h_N]. The block-diagonal
 /// fast path is chosen at compile time from EndEffectorModel::has_block_diagonal_inertia.

@@ -1,5 +1,5 @@
 /// \file
-/// \brief Structured O(N) interaction wrench of the rigid grasp (MODEL.md section 5): the
+/// \brief Structured O(N) interaction wrench of the rigid grasp (docs/dynamics.md): the
 /// Udwadia-Kalaba solution (18) computed in the object's reduced coordinates.
 ///
 /// With G_i = [[I3, 0], [S(r_i), I3]] and b_i = [S(w_o)^2 r_i; 0]:
@@ -278,7 +278,7 @@ template <typename DerivedMasses, typename DerivedRotational> struct BlockDiagon
     }
 };
 
-/// The structured solve shared by every inertia structure (MODEL.md section 5). Writes the arms'
+/// The structured solve shared by every inertia structure (docs/dynamics.md). Writes the arms'
 /// accelerations and wrenches (6N each) and returns the object's acceleration; the object's wrench
 /// goes to `object_wrench`.
 template <typename ObjectInertia, typename EndEffectorInertias, typename DerivedR, typename DerivedOmega,
@@ -380,7 +380,7 @@ template <typename DerivedR, typename DerivedSigma> constexpr int kernel_arms() 
 }  // namespace detail
 
 /// \brief Accelerations and interaction wrenches of the rigid grasp, general SPD inertias,
-/// written into caller-owned storage (MODEL.md section 5; equals (18)). Never allocates.
+/// written into caller-owned storage (docs/dynamics.md; equals (18)). Never allocates.
 /// \param object_inertia 6x6 SPD object inertia M_o in {w} (diag(m_o I3, J_o) for a body at its
 ///        centre of mass).
 /// \param ee_inertia 6 x 6N, the end-effector inertias M_i side by side (SPD each).
@@ -410,7 +410,7 @@ void solve_interaction_dynamics(const Eigen::MatrixBase<DerivedObject>& object_i
 }
 
 /// \brief Interaction wrenches h = [h_o; h_1; ...; h_N] (6(N+1)) of the rigid grasp for general
-/// SPD inertias: the structured O(N) form of (18), MODEL.md section 5. Arguments as in
+/// SPD inertias: the structured O(N) form of (18), docs/dynamics.md. Arguments as in
 /// solve_interaction_dynamics. Does not allocate when the arguments are fixed-size.
 template <typename DerivedObject, typename DerivedInertia, typename DerivedR, typename DerivedOmega,
           typename DerivedSigma>

@@ -1,5 +1,5 @@
 /// \file
-/// \brief Generic Udwadia-Kalaba constrained dynamics (MODEL.md section 5, paper (18)-(19)).
+/// \brief Generic Udwadia-Kalaba constrained dynamics (docs/dynamics.md, paper (18)-(19)).
 ///
 /// For unconstrained dynamics M xdd = hSigma and constraints A xdd = b, the constrained
 /// accelerations minimise Gauss's function (xdd - M^-1 hSigma)^T M (xdd - M^-1 hSigma) over

@@ -1,6 +1,6 @@
 /// \file
 /// \brief The cooperative Model / Data pair: an object rigidly grasped by N end-effectors
-/// (MODEL.md sections 2-4), in the style of Pinocchio.
+/// (docs/model.md), in the style of Pinocchio.
 ///
 /// A Model holds what is constant: the object, the N end-effector models, the grasp (pose of
 /// each end-effector frame in the object's body frame) and gravity. It is validated once, when
@@ -26,7 +26,7 @@ template <typename EndEffectorModel> struct Arm {
     EndEffectorModel end_effector{};
     /// Pose of the end-effector frame in the object's body frame: position r_i_body (from the
     /// object's centre of mass) and constant relative orientation dq_i, so that
-    /// p_i = p_o + R(q_o) r_i_body and q_i = q_o (x) dq_i (MODEL.md section 4).
+    /// p_i = p_o + R(q_o) r_i_body and q_i = q_o (x) dq_i (docs/model.md).
     Pose<Scalar> grasp_body{};
 };
 

@@ -1,6 +1,6 @@
 /// \file
 /// \brief Rigid-grasp kinematics: grasp matrix (24), constraint matrix (14) and constraint bias
-/// (13), and the per-arm maps G_i and G_i^T they are built from (MODEL.md section 4).
+/// (13), and the per-arm maps G_i and G_i^T they are built from (docs/model.md).
 ///
 /// `r` is 3 x N: column i is r_i, from the object's centre of mass to grasp point i, in {w}.
 #pragma once

@@ -1,5 +1,5 @@
 /// \file
-/// \brief Impedance-controlled end-effector (MODEL.md section 2, paper (1), (5), (6), (15)).
+/// \brief Impedance-controlled end-effector (docs/model.md, paper (1), (5), (6), (15)).
 #pragma once
 
 #include "coopdyn/config.hpp"
@@ -68,7 +68,7 @@ template <typename ScalarType> struct ImpedanceEndEffector {
         return result;
     }
 
-    /// U_i = 1/2 k_i |p_i - p_i^d|^2 + 2 kappa_i |d_eps_i|^2 (MODEL.md section 10, (39)):
+    /// U_i = 1/2 k_i |p_i - p_i^d|^2 + 2 kappa_i |d_eps_i|^2 (docs/analysis.md, (39)):
     /// stiffness_wrench is its gradient.
     Scalar potential_energy(const Pose<Scalar>& pose, const Pose<Scalar>& desired) const noexcept
     {

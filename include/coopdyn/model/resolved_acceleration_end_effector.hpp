@@ -1,5 +1,5 @@
 /// \file
-/// \brief End-effector under resolved-acceleration control with PD tracking (MODEL.md section 2,
+/// \brief End-effector under resolved-acceleration control with PD tracking (docs/model.md,
 /// paper (20)-(21)).
 #pragma once
 

@@ -1,5 +1,5 @@
 /// \file
-/// \brief The rigidly grasped object (MODEL.md section 3, paper (8)-(9), (16) with errata E1).
+/// \brief The rigidly grasped object (docs/model.md, paper (8)-(9), (16) with errata E1).
 #pragma once
 
 #include "coopdyn/config.hpp"

@@ -1,5 +1,5 @@
 /// \file
-/// \brief Pose x = (p, q) and rigid-body state (pose and twist), MODEL.md section 0.
+/// \brief Pose x = (p, q) and rigid-body state (pose and twist), docs/conventions.md.
 #pragma once
 
 #include "coopdyn/config.hpp"

@@ -1,5 +1,5 @@
 /// \file
-/// \brief Quaternion kinematics, exponential map and orientation error, MODEL.md section 1,
+/// \brief Quaternion kinematics, exponential map and orientation error, docs/spatial.md,
 /// paper (2)-(5) and errata E6.
 ///
 /// Quaternions are Eigen::Quaternion (Hamilton product, rotating body vectors into the world
@@ -29,7 +29,7 @@ Eigen::Matrix<Scalar, 4, 4> quaternion_left_matrix(const Quaternion<Scalar>& q) 
 }
 
 /// \brief Time derivative of q for an angular velocity expressed in the world frame:
-/// qdot = 1/2 [0; omega] (x) q (MODEL.md section 1; the printed (3) is the body-frame form, E6).
+/// qdot = 1/2 [0; omega] (x) q (docs/spatial.md; the printed (3) is the body-frame form, E6).
 /// \param orientation unit quaternion q.
 /// \param omega angular velocity in {w}.
 /// \return qdot, stored in a Quaternion (not unit).

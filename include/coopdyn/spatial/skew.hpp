@@ -1,12 +1,12 @@
 /// \file
-/// \brief The skew-symmetric cross-product matrix S(a) and products with it, MODEL.md section 0.
+/// \brief The skew-symmetric cross-product matrix S(a) and products with it, docs/conventions.md.
 #pragma once
 
 #include "coopdyn/config.hpp"
 
 namespace coopdyn {
 
-/// \brief Skew-symmetric matrix S(a) with S(a) b = a x b (MODEL.md section 0, paper (11)).
+/// \brief Skew-symmetric matrix S(a) with S(a) b = a x b (docs/conventions.md, paper (11)).
 /// \param a 3-vector (any Eigen expression).
 /// \return 3x3 matrix [[0, -a_z, a_y], [a_z, 0, -a_x], [-a_y, a_x, 0]].
 template <typename Derived>
