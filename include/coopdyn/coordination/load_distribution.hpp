@@ -122,24 +122,24 @@ void validate_load_distribution_weights(const Eigen::MatrixBase<DerivedR>& r,
     using Scalar = typename DerivedR::Scalar;
     const Index arms = r.cols();
     if (r.rows() != 3) {
-        fail("load distribution", "r", "must be 3 x N");
+        fail(load_distribution_context(), "r", "must be 3 x N");
     }
     if (mass_weights.size() != arms) {
-        fail("load distribution", "mass_weights", "must have one entry per arm (" + std::to_string(arms) + ")");
+        fail(load_distribution_context(), "mass_weights", "must have one entry per arm (" + std::to_string(arms) + ")");
     }
     if (inertia_weights.rows() != 3 || inertia_weights.cols() != 3 * arms) {
-        fail("load distribution", "inertia_weights", "must be 3 x 3N (N = " + std::to_string(arms) + ")");
+        fail(load_distribution_context(), "inertia_weights", "must be 3 x 3N (N = " + std::to_string(arms) + ")");
     }
     for (Index i = 0; i < arms; ++i) {
-        require_positive(mass_weights(i), arm_context(i), "mass_weights");
-        require_symmetric_positive(Matrix3<Scalar>(inertia_weights.template block<3, 3>(0, 3 * i)), arm_context(i),
+        require_positive(mass_weights(i), load_distribution_context(i), "mass_weights");
+        require_symmetric_positive(Matrix3<Scalar>(inertia_weights.template block<3, 3>(0, 3 * i)), load_distribution_context(i),
                                    "inertia_weights", /*allow_semidefinite=*/true);
     }
 }
 
 [[noreturn]] inline void fail_degenerate_grasp()
 {
-    fail("load distribution", "inertia_weights",
+    fail(load_distribution_context(), "inertia_weights",
          "make J*_o singular (degenerate grasp: e.g. zero rotational weights with collinear grasp points); the "
          "object torque about that axis cannot be distributed");
 }
@@ -235,7 +235,7 @@ load_distribution(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<
 {
     detail::validate_load_distribution_weights(r, mass_weights, inertia_weights);
     if (object_wrench.size() != 6) {
-        detail::fail("load distribution", "object_wrench", "must have 6 entries");
+        detail::fail(detail::argument_context("load distribution"), "object_wrench", "must have 6 entries");
     }
     Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 1> result =
         Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 1>::Zero(6 * r.cols());
@@ -275,16 +275,16 @@ public:
     {
         const Index arms = model.arms();
         if (mass_weights_.size() != arms) {
-            detail::fail("load distribution", "mass_weights", "must have one entry per arm (" + std::to_string(arms) + ")");
+            detail::fail(detail::load_distribution_context(), "mass_weights", "must have one entry per arm (" + std::to_string(arms) + ")");
         }
         if (inertia_weights_.rows() != 3 || inertia_weights_.cols() != 3 * arms) {
-            detail::fail("load distribution", "inertia_weights", "must be 3 x 3N");
+            detail::fail(detail::load_distribution_context(), "inertia_weights", "must be 3 x 3N");
         }
         Matrix3<Scalar> rotational_weight_sum = Matrix3<Scalar>::Zero();
         for (Index i = 0; i < arms; ++i) {
-            detail::require_positive(mass_weights_(i), detail::arm_context(i), "mass_weights");
+            detail::require_positive(mass_weights_(i), detail::load_distribution_context(i), "mass_weights");
             detail::require_symmetric_positive(Matrix3<Scalar>(inertia_weights_.template block<3, 3>(0, 3 * i)),
-                                               detail::arm_context(i), "inertia_weights", /*allow_semidefinite=*/true);
+                                               detail::load_distribution_context(i), "inertia_weights", /*allow_semidefinite=*/true);
             rotational_weight_sum += inertia_weights_.template block<3, 3>(0, 3 * i);
         }
         // The spread of the grasp points, sum m*_i S(r'_i) S(r'_i)^T, rotates with the object but
@@ -310,7 +310,7 @@ public:
         const double smallest_bound = std::max(spread_eigenvalues(0), rotational_eigenvalues(0));
         const double largest_bound = spread_eigenvalues(2) + rotational_eigenvalues(2);
         if (!(smallest_bound > detail::load_distribution_singularity_tolerance<Scalar>() * largest_bound)) {
-            detail::fail("load distribution", "inertia_weights",
+            detail::fail(detail::load_distribution_context(), "inertia_weights",
                          "are degenerate: the grasp points are collinear and the sum of the rotational weights "
                          "J*_i is singular, so J*_o is singular in some orientation and the torque about the grasp "
                          "line cannot be distributed");

@@ -1,9 +1,12 @@
 /// \file
-/// \brief Construction-time checks of model parameters. Each failure throws coopdyn::InvalidModel
-/// with a message naming the body (object or arm index), the parameter and what is wrong.
+/// \brief Construction-time checks of parameters. Each failure throws an exception of
+/// coopdyn/errors.hpp naming the component (object, arm index, ...), the parameter and what is
+/// wrong: InvalidModel for a model context (object_context, arm_context, model_context,
+/// load_distribution_context), InvalidArgument for any other named component.
 #pragma once
 
 #include "coopdyn/config.hpp"
+#include "coopdyn/errors.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -12,20 +15,11 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
 
 namespace coopdyn {
-
-/// \brief Thrown when a model is built from invalid parameters. what() names the body, the
-/// parameter and the problem, e.g. "coopdyn: arm 1: 'mass' must be positive and finite, got -2".
-class InvalidModel : public std::invalid_argument {
-public:
-    using std::invalid_argument::invalid_argument;
-};
-
 namespace detail {
 
 /// Numerical value of a scalar as double: the value itself for arithmetic types, value() for
@@ -64,18 +58,47 @@ template <typename Scalar> double tolerance_for(double tolerance)
     return std::max(tolerance, 16.0 * epsilon_of<Scalar>());
 }
 
-/// Where a parameter lives: "object", "arm 3", "model".
-inline std::string object_context() { return "object"; }
-inline std::string arm_context(Index arm) { return "arm " + std::to_string(arm); }
+/// Which exception a failed check throws.
+enum class ErrorKind { model, argument };
 
-[[noreturn]] inline void fail(const std::string& context, const std::string& parameter,
-                              const std::string& problem)
+/// Where a parameter lives: the kind of input, the component and the arm (or no_arm).
+/// A plain string converts to an argument context: only the *_context functions below make
+/// model contexts, so the exception type is decided in one visible place.
+struct ErrorContext {
+    ErrorKind kind = ErrorKind::argument;
+    std::string component;
+    Index arm = no_arm;
+
+    ErrorContext(ErrorKind kind_, std::string component_, Index arm_ = no_arm)
+        : kind(kind_), component(std::move(component_)), arm(arm_)
+    {
+    }
+    ErrorContext(std::string component_) : component(std::move(component_)) {}  // NOLINT: implicit on purpose
+    ErrorContext(const char* component_) : component(component_) {}              // NOLINT: implicit on purpose
+};
+
+inline ErrorContext object_context() { return {ErrorKind::model, "object"}; }
+inline ErrorContext arm_context(Index arm) { return {ErrorKind::model, "end effector", arm}; }
+inline ErrorContext model_context() { return {ErrorKind::model, "model"}; }
+inline ErrorContext load_distribution_context(Index arm = no_arm)
 {
-    throw InvalidModel("coopdyn: " + context + ": '" + parameter + "' " + problem);
+    return {ErrorKind::model, "load distribution", arm};
+}
+inline ErrorContext argument_context(std::string component, Index arm = no_arm)
+{
+    return {ErrorKind::argument, std::move(component), arm};
+}
+
+[[noreturn]] inline void fail(const ErrorContext& context, const std::string& parameter, const std::string& problem)
+{
+    if (context.kind == ErrorKind::model) {
+        throw InvalidModel(context.component, parameter, context.arm, problem);
+    }
+    throw InvalidArgument(context.component, parameter, context.arm, problem);
 }
 
 template <typename Scalar>
-void require_positive(const Scalar& scalar, const std::string& context, const std::string& parameter)
+void require_positive(const Scalar& scalar, const ErrorContext& context, const std::string& parameter)
 {
     const double value = value_of(scalar);
     if (!std::isfinite(value) || !(value > 0.0)) {
@@ -86,7 +109,7 @@ void require_positive(const Scalar& scalar, const std::string& context, const st
 }
 
 template <typename Scalar>
-void require_non_negative(const Scalar& scalar, const std::string& context, const std::string& parameter)
+void require_non_negative(const Scalar& scalar, const ErrorContext& context, const std::string& parameter)
 {
     const double value = value_of(scalar);
     if (!std::isfinite(value) || !(value >= 0.0)) {
@@ -97,7 +120,7 @@ void require_non_negative(const Scalar& scalar, const std::string& context, cons
 }
 
 template <typename Derived>
-void require_finite(const Eigen::MatrixBase<Derived>& matrix, const std::string& context,
+void require_finite(const Eigen::MatrixBase<Derived>& matrix, const ErrorContext& context,
                     const std::string& parameter)
 {
     if (!values_of(matrix).allFinite()) {
@@ -108,7 +131,7 @@ void require_finite(const Eigen::MatrixBase<Derived>& matrix, const std::string&
 /// Symmetric to relative 1e-9 of its largest entry, and positive definite (or, with
 /// allow_semidefinite, positive semi-definite to the same relative tolerance).
 template <typename Derived>
-void require_symmetric_positive(const Eigen::MatrixBase<Derived>& matrix, const std::string& context,
+void require_symmetric_positive(const Eigen::MatrixBase<Derived>& matrix, const ErrorContext& context,
                                 const std::string& parameter, bool allow_semidefinite = false)
 {
     require_finite(matrix, context, parameter);
@@ -133,7 +156,7 @@ void require_symmetric_positive(const Eigen::MatrixBase<Derived>& matrix, const 
 
 /// A unit quaternion to 1e-9 (a quaternion is never normalised silently).
 template <typename Scalar>
-void require_unit_quaternion(const Quaternion<Scalar>& quaternion, const std::string& context,
+void require_unit_quaternion(const Quaternion<Scalar>& quaternion, const ErrorContext& context,
                              const std::string& parameter)
 {
     require_finite(quaternion.coeffs(), context, parameter);

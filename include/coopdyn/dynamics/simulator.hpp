@@ -46,7 +46,7 @@ public:
     /// \param model kept by reference: it must outlive the simulator.
     /// \param time_step dt > 0, seconds.
     /// \param initial_state object pose (unit quaternion) and twist.
-    /// Throws InvalidModel on a non-positive or non-finite time step or an invalid initial state.
+    /// Throws InvalidArgument on a non-positive or non-finite time step or an invalid initial state.
     Simulator(const ModelType& model, Scalar time_step, const State& initial_state,
               Integrator integrator = Integrator::runge_kutta_4)
         : model_(model),
@@ -61,7 +61,7 @@ public:
         reset(initial_state);
     }
 
-    /// Restart from `state` at `time`. Throws InvalidModel if the state is not finite or its
+    /// Restart from `state` at `time`. Throws InvalidArgument if the state is not finite or its
     /// quaternion is not unit.
     void reset(const State& state, Scalar time = Scalar(0))
     {

@@ -56,15 +56,15 @@ public:
         : object_(std::move(object)), gravity_(std::move(gravity))
     {
         if (arms.empty()) {
-            detail::fail("model", "arms", "must hold at least one arm (N = 0 given)");
+            detail::fail(detail::model_context(), "arms", "must hold at least one arm (N = 0 given)");
         }
         if (Arms != Dynamic && static_cast<Index>(arms.size()) != Arms) {
-            detail::fail("model", "arms",
+            detail::fail(detail::model_context(), "arms",
                          "must hold exactly " + std::to_string(Arms) + " arms for this fixed-N model, got " +
                              std::to_string(arms.size()));
         }
         object_.validate();
-        detail::require_finite(gravity_, "model", "gravity");
+        detail::require_finite(gravity_, detail::model_context(), "gravity");
         const Index count = static_cast<Index>(arms.size());
         end_effectors_.reserve(arms.size());
         grasp_offsets_body_.resize(3, count);
@@ -75,7 +75,7 @@ public:
         for (Index i = 0; i < count; ++i) {
             const ArmType& arm = arms[static_cast<std::size_t>(i)];
             arm.end_effector.validate(i);
-            const std::string context = detail::arm_context(i);
+            const detail::ErrorContext context = detail::arm_context(i);
             detail::require_finite(arm.grasp_body.position, context, "grasp_body.position");
             detail::require_unit_quaternion(arm.grasp_body.orientation, context, "grasp_body.orientation");
             end_effectors_.push_back(arm.end_effector);

@@ -81,7 +81,7 @@ template <typename ScalarType> struct ImpedanceEndEffector {
     /// finite.
     void validate(Index arm) const
     {
-        const std::string context = detail::arm_context(arm);
+        const detail::ErrorContext context = detail::arm_context(arm);
         detail::require_positive(mass, context, "mass");
         detail::require_symmetric_positive(rotational_inertia, context, "rotational_inertia");
         detail::require_non_negative(translational_damping, context, "translational_damping");

@@ -55,7 +55,7 @@ template <typename ScalarType> struct ResolvedAccelerationEndEffector {
     /// Throws InvalidModel naming the arm and the parameter: Lambda_i SPD, gains finite.
     void validate(Index arm) const
     {
-        const std::string context = detail::arm_context(arm);
+        const detail::ErrorContext context = detail::arm_context(arm);
         detail::require_symmetric_positive(apparent_inertia, context, "apparent_inertia");
         detail::require_finite(derivative_gain, context, "derivative_gain");
         detail::require_finite(proportional_gain, context, "proportional_gain");
