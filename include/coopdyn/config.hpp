@@ -34,6 +34,9 @@ constexpr int full_stack_size(int arms) noexcept
     return arms == Eigen::Dynamic ? Eigen::Dynamic : 6 * (arms + 1);
 }
 
+/// pi in the precision of Scalar (double by default), the one definition every coopdyn file uses.
+template <typename Scalar = double> constexpr Scalar pi() { return Scalar(3.141592653589793238462643383279502884L); }
+
 template <typename Scalar> using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
 template <typename Scalar> using Vector4 = Eigen::Matrix<Scalar, 4, 1>;
 template <typename Scalar> using Vector6 = Eigen::Matrix<Scalar, 6, 1>;

@@ -3,9 +3,13 @@
 #pragma once
 
 #include "coopdyn/config.hpp"
+#include "coopdyn/errors.hpp"
+#include "coopdyn/spatial/inertia.hpp"
 #include "coopdyn/spatial/pose.hpp"
 #include "coopdyn/spatial/quaternion.hpp"
 #include "coopdyn/spatial/skew.hpp"
+#include "coopdyn/spatial/spatial_vector.hpp"
+#include "coopdyn/spatial/symmetric3.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
 #include "coopdyn/model/grasp.hpp"
 #include "coopdyn/model/impedance_end_effector.hpp"

@@ -7,48 +7,26 @@
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/spatial/skew.hpp"
+#include "coopdyn/spatial/spatial_vector.hpp"
 
 namespace coopdyn {
 
 /// \brief Wrench map of one arm, G_i h = [f; r_i x f + t]: a wrench at grasp point i expressed
-/// at the object's centre of mass, G_i = [[I3, 0], [S(r_i), I3]] (paper (24)).
+/// at the object's centre of mass, G_i = [[I3, 0], [S(r_i), I3]] (paper (24)); Force::shifted.
 template <typename DerivedR, typename DerivedW>
 Vector6<typename DerivedW::Scalar> grasp_map_wrench(const Eigen::MatrixBase<DerivedR>& r_i,
                                                     const Eigen::MatrixBase<DerivedW>& wrench) noexcept
 {
-    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedR, 3);
-    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedW, 6);
-    Vector6<typename DerivedW::Scalar> result;
-    result.template head<3>() = wrench.template head<3>();
-    result.template tail<3>() =
-        r_i.cross(wrench.template head<3>()) + wrench.template tail<3>();
-    return result;
+    return Force<typename DerivedW::Scalar>::from(wrench).shifted(r_i).vector();
 }
 
 /// \brief Twist map of one arm, G_i^T xdot_o = [v_o + w_o x r_i; w_o]: the twist of grasp point
-/// i on a rigid object (paper (10)).
+/// i on a rigid object (paper (10)); Motion::at_point.
 template <typename DerivedR, typename DerivedT>
 Vector6<typename DerivedT::Scalar> grasp_map_twist(const Eigen::MatrixBase<DerivedR>& r_i,
                                                    const Eigen::MatrixBase<DerivedT>& object_twist) noexcept
 {
-    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedR, 3);
-    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedT, 6);
-    Vector6<typename DerivedT::Scalar> result;
-    result.template head<3>() =
-        object_twist.template head<3>() + object_twist.template tail<3>().cross(r_i);
-    result.template tail<3>() = object_twist.template tail<3>();
-    return result;
-}
-
-/// \brief Centripetal acceleration of grasp point i, w_o x (w_o x r_i) = S(w_o)^2 r_i: the
-/// translational part of b_i in (13); the rotational part is zero.
-template <typename DerivedR, typename DerivedOmega>
-Vector3<typename DerivedR::Scalar> centripetal_acceleration(
-    const Eigen::MatrixBase<DerivedR>& r_i, const Eigen::MatrixBase<DerivedOmega>& omega_o) noexcept
-{
-    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedR, 3);
-    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedOmega, 3);
-    return omega_o.cross(omega_o.cross(r_i));
+    return Motion<typename DerivedT::Scalar>::from(object_twist).at_point(r_i).vector();
 }
 
 /// \brief Grasp matrix G = [G_1 ... G_N] of paper (24), 6 x 6N, with h_o = G hbar (23).

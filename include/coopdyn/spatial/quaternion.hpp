@@ -97,6 +97,31 @@ quaternion_exp(const Eigen::MatrixBase<Derived>& rotation_vector) noexcept
     return result;
 }
 
+/// \brief Logarithm map, the inverse of quaternion_exp: the rotation vector theta u (|theta| <= pi)
+/// of the rotation q represents. q and -q give the same result (the shorter rotation is chosen).
+/// \param q unit quaternion (not normalised here; asserted unit in debug builds).
+/// \return theta u, radians; exact near the identity (series for sin(theta/2) / theta), so it is
+/// smooth at q = 1, which autodiff scalars need.
+template <typename Scalar> Vector3<Scalar> quaternion_log(const Quaternion<Scalar>& q) noexcept
+{
+    using std::abs;
+    using std::atan2;
+    using std::sqrt;
+    COOPDYN_ASSERT(abs(q.squaredNorm() - Scalar(1)) < Scalar(1e-4), "quaternion_log needs a unit quaternion");
+    // The representative with w >= 0 is the rotation by theta in [0, pi].
+    const Scalar sign = q.w() < Scalar(0) ? Scalar(-1) : Scalar(1);
+    const Scalar w = sign * q.w();
+    const Vector3<Scalar> v = sign * q.vec();
+    const Scalar sine_squared = v.squaredNorm();  // sin^2(theta / 2)
+    // theta / sin(theta / 2) = 2 asin(s) / s; for s < 1e-4 its series 2 (1 + s^2 / 6 + 3 s^4 / 40) is
+    // exact to double rounding.
+    if (sine_squared < Scalar(1e-8)) {
+        return (Scalar(2) * (Scalar(1) + sine_squared / Scalar(6) + Scalar(3) * sine_squared * sine_squared / Scalar(40))) * v;
+    }
+    const Scalar sine = sqrt(sine_squared);
+    return (Scalar(2) * atan2(sine, w) / sine) * v;
+}
+
 /// \brief Orientation error dq = q (x) qd^-1 of paper (5), returned as (d_eta, d_eps).
 /// \param orientation current unit quaternion q.
 /// \param desired desired unit quaternion qd (its conjugate is used as the inverse).

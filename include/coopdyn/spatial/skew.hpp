@@ -3,6 +3,7 @@
 #pragma once
 
 #include "coopdyn/config.hpp"
+#include "coopdyn/spatial/symmetric3.hpp"
 
 namespace coopdyn {
 
@@ -30,9 +31,7 @@ Matrix3<typename Derived::Scalar> skew(const Eigen::MatrixBase<Derived>& a) noex
 template <typename Derived>
 Matrix3<typename Derived::Scalar> skew_gram(const Eigen::MatrixBase<Derived>& a) noexcept
 {
-    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
-    using Scalar = typename Derived::Scalar;
-    return a.squaredNorm() * Matrix3<Scalar>::Identity() - a * a.transpose();
+    return Symmetric3<typename Derived::Scalar>::skew_square(a).matrix();
 }
 
 }  // namespace coopdyn

@@ -1,0 +1,305 @@
+/// \file
+/// \brief Spatial inertias: SpatialInertia (a rigid body's, or any diag(m I3, J) seen from
+/// another point) and ArticulatedInertia (a general symmetric positive definite 6x6, such as an
+/// arm's task-space inertia Lambda_i of (21)), with the operations the cooperative model is built
+/// from: the shift G_i M_i G_i^T of (31), sums, rotation into {w} (9), and a structured solve.
+///
+/// Both act on motions [v; w] and give forces [f; t] (docs/conventions.md), torques about the
+/// reference point. Fixed-size, Scalar-generic, allocation-free.
+#pragma once
+
+#include "coopdyn/config.hpp"
+#include "coopdyn/detail/fixed_cholesky.hpp"
+#include "coopdyn/spatial/skew.hpp"
+#include "coopdyn/spatial/spatial_vector.hpp"
+#include "coopdyn/spatial/symmetric3.hpp"
+
+namespace coopdyn {
+
+/// \brief Inertia of a rigid body about a reference point: mass m, first moment h = m c (c the
+/// centre of mass relative to the reference point) and rotational inertia I about the reference
+/// point, so that
+///
+///     matrix() = [[m I3, S(h)^T], [S(h), I]],    I = I_c + m S(c) S(c)^T.
+///
+/// The end-effector inertia diag(m_i I3, J_i) of (1) and the object's diag(m_o I3, J_o) of (9)
+/// are the case h = 0; their sum seen from the object, M_o + sum G_i M_i G_i^T of (31), is again
+/// one (the composite rigid body).
+template <typename ScalarType> class SpatialInertia {
+public:
+    using Scalar = ScalarType;
+
+    /// Zero inertia.
+    SpatialInertia() : mass_(0), first_moment_(Vector3<Scalar>::Zero()) {}
+    SpatialInertia(const Scalar& mass, const Vector3<Scalar>& first_moment, const Symmetric3<Scalar>& rotational)
+        : mass_(mass), first_moment_(first_moment), rotational_(rotational)
+    {
+    }
+    /// diag(m I3, J): a body about its centre of mass (the paper's M_o (9) and M_i (1)).
+    static SpatialInertia block_diagonal(const Scalar& mass, const Symmetric3<Scalar>& rotational)
+    {
+        return SpatialInertia(mass, Vector3<Scalar>::Zero(), rotational);
+    }
+    /// diag(m I3, J) from a dense 3x3 J (only its lower triangle is read).
+    template <typename Derived>
+    static SpatialInertia block_diagonal(const Scalar& mass, const Eigen::MatrixBase<Derived>& rotational)
+    {
+        return block_diagonal(mass, Symmetric3<Scalar>(rotational));
+    }
+    /// A body of mass m with centre of mass at c and rotational inertia I_c about c.
+    static SpatialInertia from_centre(const Scalar& mass, const Vector3<Scalar>& centre,
+                                      const Symmetric3<Scalar>& rotational_about_centre)
+    {
+        Symmetric3<Scalar> rotational = rotational_about_centre;
+        rotational.add_skew_square(mass, centre);
+        return SpatialInertia(mass, mass * centre, rotational);
+    }
+    static SpatialInertia Zero() { return SpatialInertia(); }
+
+    const Scalar& mass() const noexcept { return mass_; }
+    /// h = m c.
+    const Vector3<Scalar>& first_moment() const noexcept { return first_moment_; }
+    /// c = h / m (requires m > 0).
+    Vector3<Scalar> centre() const noexcept { return first_moment_ / mass_; }
+    /// I, about the reference point.
+    const Symmetric3<Scalar>& rotational() const noexcept { return rotational_; }
+    /// I_c = I - m S(c) S(c)^T, about the centre of mass (requires m > 0).
+    Symmetric3<Scalar> rotational_about_centre() const noexcept
+    {
+        Symmetric3<Scalar> result = rotational_;
+        result.add_skew_square(-Scalar(1) / mass_, first_moment_);
+        return result;
+    }
+
+    /// The dense 6x6 matrix [[m I3, S(h)^T], [S(h), I]].
+    Matrix6<Scalar> matrix() const
+    {
+        Matrix6<Scalar> result;
+        result.template topLeftCorner<3, 3>() = mass_ * Matrix3<Scalar>::Identity();
+        result.template bottomLeftCorner<3, 3>() = skew(first_moment_);
+        result.template topRightCorner<3, 3>() = skew(first_moment_).transpose();
+        result.template bottomRightCorner<3, 3>() = rotational_.matrix();
+        return result;
+    }
+
+    /// M a: [m v - h x w; h x v + I w].
+    Force<Scalar> operator*(const Motion<Scalar>& motion) const noexcept
+    {
+        return Force<Scalar>::make(mass_ * motion.linear - first_moment_.cross(motion.angular),
+                                   first_moment_.cross(motion.linear) + rotational_ * motion.angular);
+    }
+
+    /// G(r) M G(r)^T with G(r) = [[I3, 0], [S(r), I3]]: this inertia, attached at the point
+    /// displaced by r from the reference point, seen from the reference point (the parallel-axis
+    /// theorem). For r = r_i it is the arm's contribution to (31):
+    /// h' = h + m r, I' = I + m S(r) S(r)^T + S(h) S(r)^T + S(r) S(h)^T.
+    template <typename Derived> SpatialInertia shifted(const Eigen::MatrixBase<Derived>& r) const noexcept
+    {
+        EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
+        SpatialInertia result = *this;
+        result.add_shifted(*this, r);
+        result -= *this;
+        return result;
+    }
+
+    /// this += other.shifted(r), without forming the shifted inertia (the composite inertia's
+    /// accumulation on the per-tick path).
+    template <typename Derived>
+    void add_shifted(const SpatialInertia& other, const Eigen::MatrixBase<Derived>& r_in) noexcept
+    {
+        EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
+        const Vector3<Scalar> r = r_in;
+        const Vector3<Scalar>& h = other.first_moment_;
+        mass_ += other.mass_;
+        first_moment_ += h + other.mass_ * r;
+        rotational_ += other.rotational_;
+        rotational_.add_skew_square(other.mass_, r);
+        // S(h) S(r)^T + S(r) S(h)^T = 2 (h . r) I3 - h r^T - r h^T
+        const Scalar twice_dot = Scalar(2) * h.dot(r);
+        rotational_.xx += twice_dot - Scalar(2) * h(0) * r(0);
+        rotational_.yy += twice_dot - Scalar(2) * h(1) * r(1);
+        rotational_.zz += twice_dot - Scalar(2) * h(2) * r(2);
+        rotational_.yx -= h(1) * r(0) + r(1) * h(0);
+        rotational_.zx -= h(2) * r(0) + r(2) * h(0);
+        rotational_.zy -= h(2) * r(1) + r(2) * h(1);
+    }
+
+    /// diag(R, R) M diag(R, R)^T: the same inertia in the frame R rotates into (e.g. from the body
+    /// frame into {w}, (9)).
+    template <typename Derived> SpatialInertia rotated(const Eigen::MatrixBase<Derived>& rotation) const
+    {
+        return SpatialInertia(mass_, rotation * first_moment_, rotational_.rotated(rotation));
+    }
+
+    SpatialInertia& operator+=(const SpatialInertia& other) noexcept
+    {
+        mass_ += other.mass_;
+        first_moment_ += other.first_moment_;
+        rotational_ += other.rotational_;
+        return *this;
+    }
+    SpatialInertia& operator-=(const SpatialInertia& other) noexcept
+    {
+        mass_ -= other.mass_;
+        first_moment_ -= other.first_moment_;
+        rotational_ -= other.rotational_;
+        return *this;
+    }
+    friend SpatialInertia operator+(SpatialInertia a, const SpatialInertia& b) noexcept { return a += b; }
+
+    /// Solves M a = force in O(1) through the structure: with c = h / m,
+    /// w = I_c^-1 (t - c x f) and v = f / m + c x w (I_c = the rotational inertia about the
+    /// centre of mass, the Schur complement of m I3). Precondition (asserted in debug builds):
+    /// m > 0 and I_c positive definite.
+    Motion<Scalar> solve(const Force<Scalar>& force) const noexcept
+    {
+        COOPDYN_ASSERT(mass_ > Scalar(0), "SpatialInertia::solve needs a positive mass");
+        const Scalar inverse_mass = Scalar(1) / mass_;
+        const Vector3<Scalar> centre = inverse_mass * first_moment_;
+        Symmetric3<Scalar> about_centre = rotational_;
+        about_centre.add_skew_square(-mass_, centre);
+        const Vector3<Scalar> angular = about_centre.solve(Vector3<Scalar>(force.angular - centre.cross(force.linear)));
+        return Motion<Scalar>::make(inverse_mass * force.linear + centre.cross(angular), angular);
+    }
+
+    /// 1/2 a^T M a, the kinetic energy of the twist a.
+    Scalar kinetic_energy(const Motion<Scalar>& twist) const noexcept
+    {
+        return Scalar(0.5) * twist.dot((*this) * twist);
+    }
+
+    template <typename Other> SpatialInertia<Other> cast() const
+    {
+        return SpatialInertia<Other>(Other(mass_), first_moment_.template cast<Other>(),
+                                     rotational_.template cast<Other>());
+    }
+
+private:
+    Scalar mass_;
+    Vector3<Scalar> first_moment_;
+    Symmetric3<Scalar> rotational_;
+};
+
+/// \brief A general symmetric 6x6 inertia [[A, H^T], [H, C]] (A, C symmetric), the structure of
+/// an articulated-body or task-space inertia such as Lambda_i of (21). Same operations as
+/// SpatialInertia; the solve factorises the 6x6 matrix (L D L^T, written out).
+template <typename ScalarType> class ArticulatedInertia {
+public:
+    using Scalar = ScalarType;
+
+    ArticulatedInertia() : coupling_(Matrix3<Scalar>::Zero()) {}
+    ArticulatedInertia(const Symmetric3<Scalar>& linear, const Matrix3<Scalar>& coupling,
+                       const Symmetric3<Scalar>& angular)
+        : linear_(linear), coupling_(coupling), angular_(angular)
+    {
+    }
+    /// From a dense symmetric 6x6 matrix: its lower triangle is read.
+    template <typename Derived> explicit ArticulatedInertia(const Eigen::MatrixBase<Derived>& matrix)
+        : linear_(matrix.template topLeftCorner<3, 3>()),
+          coupling_(matrix.template bottomLeftCorner<3, 3>()),
+          angular_(matrix.template bottomRightCorner<3, 3>())
+    {
+        EIGEN_STATIC_ASSERT_MATRIX_SPECIFIC_SIZE(Derived, 6, 6);
+    }
+    /// A rigid-body inertia as a general one.
+    explicit ArticulatedInertia(const SpatialInertia<Scalar>& inertia)
+        : linear_(Symmetric3<Scalar>::scaled_identity(inertia.mass())),
+          coupling_(skew(inertia.first_moment())),
+          angular_(inertia.rotational())
+    {
+    }
+    static ArticulatedInertia Zero() { return ArticulatedInertia(); }
+
+    /// A (top-left), H (bottom-left), C (bottom-right).
+    const Symmetric3<Scalar>& linear() const noexcept { return linear_; }
+    const Matrix3<Scalar>& coupling() const noexcept { return coupling_; }
+    const Symmetric3<Scalar>& angular() const noexcept { return angular_; }
+
+    Matrix6<Scalar> matrix() const
+    {
+        Matrix6<Scalar> result;
+        result.template topLeftCorner<3, 3>() = linear_.matrix();
+        result.template bottomLeftCorner<3, 3>() = coupling_;
+        result.template topRightCorner<3, 3>() = coupling_.transpose();
+        result.template bottomRightCorner<3, 3>() = angular_.matrix();
+        return result;
+    }
+
+    Force<Scalar> operator*(const Motion<Scalar>& motion) const noexcept
+    {
+        return Force<Scalar>::make(linear_ * motion.linear + coupling_.transpose() * motion.angular,
+                                   coupling_ * motion.linear + angular_ * motion.angular);
+    }
+
+    /// G(r) X G(r)^T (see SpatialInertia::shifted): with S = S(r),
+    /// A' = A, H' = H + S A, C' = C + S A S^T + S H^T + H S^T.
+    template <typename Derived> ArticulatedInertia shifted(const Eigen::MatrixBase<Derived>& r) const
+    {
+        ArticulatedInertia result;
+        result.add_shifted(*this, r);
+        return result;
+    }
+    /// this += other.shifted(r).
+    template <typename Derived> void add_shifted(const ArticulatedInertia& other, const Eigen::MatrixBase<Derived>& r)
+    {
+        EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
+        const Matrix3<Scalar> s = skew(r);
+        const Matrix3<Scalar> s_a = s * other.linear_.matrix();
+        const Matrix3<Scalar> h_s = other.coupling_ * s.transpose();
+        linear_ += other.linear_;
+        coupling_ += other.coupling_ + s_a;
+        angular_ += other.angular_ + Symmetric3<Scalar>(Matrix3<Scalar>(s_a * s.transpose() + h_s + h_s.transpose()));
+    }
+    template <typename Derived> void add_shifted(const SpatialInertia<Scalar>& other, const Eigen::MatrixBase<Derived>& r)
+    {
+        *this += ArticulatedInertia(other.shifted(r));
+    }
+
+    template <typename Derived> ArticulatedInertia rotated(const Eigen::MatrixBase<Derived>& rotation) const
+    {
+        return ArticulatedInertia(linear_.rotated(rotation), Matrix3<Scalar>(rotation * coupling_ * rotation.transpose()),
+                                  angular_.rotated(rotation));
+    }
+
+    ArticulatedInertia& operator+=(const ArticulatedInertia& other) noexcept
+    {
+        linear_ += other.linear_;
+        coupling_ += other.coupling_;
+        angular_ += other.angular_;
+        return *this;
+    }
+    ArticulatedInertia& operator+=(const SpatialInertia<Scalar>& other) noexcept
+    {
+        return *this += ArticulatedInertia(other);
+    }
+    friend ArticulatedInertia operator+(ArticulatedInertia a, const ArticulatedInertia& b) noexcept { return a += b; }
+
+    /// Solves X a = force by an L D L^T factorisation of the 6x6 matrix (no explicit inverse).
+    /// Precondition (asserted in debug builds): X positive definite.
+    Motion<Scalar> solve(const Force<Scalar>& force) const noexcept
+    {
+        detail::FixedCholesky<Scalar, 6> factor;
+        const bool positive_definite = factor.compute(matrix());
+        COOPDYN_ASSERT(positive_definite, "ArticulatedInertia::solve needs a positive definite inertia");
+        (void)positive_definite;
+        return Motion<Scalar>::from(factor.solve(force.vector()));
+    }
+
+    Scalar kinetic_energy(const Motion<Scalar>& twist) const noexcept
+    {
+        return Scalar(0.5) * twist.dot((*this) * twist);
+    }
+
+    template <typename Other> ArticulatedInertia<Other> cast() const
+    {
+        return ArticulatedInertia<Other>(linear_.template cast<Other>(), coupling_.template cast<Other>(),
+                                         angular_.template cast<Other>());
+    }
+
+private:
+    Symmetric3<Scalar> linear_;
+    Matrix3<Scalar> coupling_;
+    Symmetric3<Scalar> angular_;
+};
+
+}  // namespace coopdyn
