@@ -9,7 +9,10 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <array>
 #include <cassert>
+#include <type_traits>
+#include <vector>
 
 namespace coopdyn {
 
@@ -65,6 +68,10 @@ using PerArmMatrix6 = Eigen::Matrix<Scalar, 6, end_effector_stack_size(Arms)>;
 /// Per-arm 3x3 matrices side by side: 3 x 3N (rotational inertias J_i).
 template <typename Scalar, int Arms>
 using PerArmMatrix3 = Eigen::Matrix<Scalar, 3, times_three(Arms)>;
+
+/// One object per arm: std::array for a fixed N (no heap at all), std::vector for Dynamic.
+template <typename T, int Arms>
+using PerArm = std::conditional_t<Arms == Eigen::Dynamic, std::vector<T>, std::array<T, static_cast<std::size_t>(Arms == Eigen::Dynamic ? 0 : Arms)>>;
 
 namespace detail {
 

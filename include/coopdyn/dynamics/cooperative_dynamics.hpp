@@ -8,7 +8,6 @@
 #include "coopdyn/model/cooperative_model.hpp"
 #include "coopdyn/model/grasp.hpp"
 
-#include <type_traits>
 
 namespace coopdyn {
 
@@ -39,8 +38,8 @@ void grasp_kinematics(const ModelType& model, Data<ModelType>& data,
 /// wrenches h_i^x (6) (or h_i^Pi (20)), hSigma_i = h_i^x - h_i^d + htilde_i (15), hSigma_o (16)
 /// with gravity (E1), then the structured interaction solve (docs/dynamics.md).
 ///
-/// Fills every field of `data`; returns data.wrenches = [h_o; h_1; ...; h_N]. The block-diagonal
-/// fast path is chosen at compile time from EndEffectorModel::has_block_diagonal_inertia.
+/// Fills every field of `data`; returns data.wrenches = [h_o; h_1; ...; h_N]. The solver's path
+/// is chosen at compile time from the end-effector model's inertia type.
 /// noexcept; allocation-free (also for N = Dynamic, once `data` is built).
 template <typename ModelType>
 const FullStackVector<typename ModelType::Scalar, ModelType::arms_at_compile_time>&
@@ -50,7 +49,6 @@ interaction_dynamics(const ModelType& model, Data<ModelType>& data,
                      const Disturbances<typename ModelType::Scalar, ModelType::arms_at_compile_time>& disturbances) noexcept
 {
     using Scalar = typename ModelType::Scalar;
-    using EndEffectorModel = typename ModelType::EndEffectorModel;
     COOPDYN_ASSERT(setpoints.arms() == model.arms(), "setpoints sized for another number of arms");
     COOPDYN_ASSERT(disturbances.arms() == model.arms(), "disturbances sized for another number of arms");
     grasp_kinematics(model, data, object_state);
@@ -66,22 +64,10 @@ interaction_dynamics(const ModelType& model, Data<ModelType>& data,
     data.h_sigma.template head<6>() = model.object().h_sigma(
         data.object_rotational_inertia, object_state.twist, disturbances.object, model.gravity());
 
-    const auto omega_o = object_state.twist.template tail<3>();
-    if constexpr (EndEffectorModel::has_block_diagonal_inertia) {
-        solve_interaction_dynamics_block_diagonal(
-            model.object().mass, data.object_rotational_inertia, model.end_effector_masses(),
-            model.end_effector_rotational_inertias(), data.grasp_offsets, omega_o, data.h_sigma,
-            data.accelerations, data.wrenches);
-    } else {
-        // The object's inertia is always diag(m_o I3, J_o); only the end-effectors' is general.
-        using ObjectInertia = detail::BlockDiagonalObjectInertia<Matrix3<Scalar>>;
-        using EndEffectorInertias = detail::GeneralEndEffectorInertias<
-            std::decay_t<decltype(model.end_effector_inertias())>>;
-        detail::solve_interaction_stacked<ModelType::arms_at_compile_time>(
-            ObjectInertia{model.object().mass, data.object_rotational_inertia},
-            EndEffectorInertias{model.end_effector_inertias()}, data.grasp_offsets, omega_o, data.h_sigma,
-            data.accelerations, data.wrenches);
-    }
+    // The inertias' types choose the solver's path (closed form for diag(m I3, J) bodies).
+    interaction_wrenches(SpatialInertia<Scalar>::block_diagonal(model.object().mass, data.object_rotational_inertia),
+                         model.end_effector_inertia_list(), data.grasp_offsets,
+                         object_state.twist.template tail<3>(), data.h_sigma, data.accelerations, data.wrenches);
     return data.wrenches;
 }
 

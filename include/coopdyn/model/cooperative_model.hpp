@@ -72,6 +72,9 @@ public:
         end_effector_masses_.resize(count);
         end_effector_rotational_inertias_.resize(3, 3 * count);
         end_effector_inertias_.resize(6, 6 * count);
+        if constexpr (Arms == Dynamic) {
+            inertias_.resize(arms.size());
+        }
         for (Index i = 0; i < count; ++i) {
             const ArmType& arm = arms[static_cast<std::size_t>(i)];
             arm.end_effector.validate(i);
@@ -81,7 +84,8 @@ public:
             end_effectors_.push_back(arm.end_effector);
             grasp_offsets_body_.col(i) = arm.grasp_body.position;
             grasp_orientations_body_.col(i) = arm.grasp_body.orientation.coeffs();
-            const Matrix6<Scalar> inertia = arm.end_effector.inertia();
+            inertias_[static_cast<std::size_t>(i)] = arm.end_effector.inertia();
+            const Matrix6<Scalar> inertia = inertias_[static_cast<std::size_t>(i)].matrix();
             end_effector_inertias_.template block<6, 6>(0, 6 * i) = inertia;
             end_effector_masses_(i) = inertia(0, 0);
             end_effector_rotational_inertias_.template block<3, 3>(0, 3 * i) =
@@ -105,7 +109,19 @@ public:
     {
         return Eigen::Map<const Quaternion<Scalar>>(grasp_orientations_body_.col(arm).data());
     }
-    /// M_i side by side, 6 x 6N.
+    /// M_i of arm i, in the end-effector model's inertia type (SpatialInertia for impedance
+    /// end-effectors, ArticulatedInertia for resolved-acceleration ones).
+    const typename EndEffectorModel::Inertia& end_effector_inertia(Index arm) const noexcept
+    {
+        COOPDYN_ASSERT(arm >= 0 && arm < arms(), "arm index out of range");
+        return inertias_[static_cast<std::size_t>(arm)];
+    }
+    /// All M_i, one per arm (a std::array for fixed N), as the interaction kernels take them.
+    const PerArm<typename EndEffectorModel::Inertia, Arms>& end_effector_inertia_list() const noexcept
+    {
+        return inertias_;
+    }
+    /// M_i side by side, 6 x 6N (the dense form the matrix kernels take).
     const PerArmMatrix6<Scalar, Arms>& end_effector_inertias() const noexcept { return end_effector_inertias_; }
     /// m_i (the (0, 0) entry of M_i), N; meaningful for block-diagonal end-effector inertias.
     const Eigen::Matrix<Scalar, Arms, 1>& end_effector_masses() const noexcept { return end_effector_masses_; }
@@ -119,6 +135,7 @@ private:
     RigidObject<Scalar> object_;
     Vector3<Scalar> gravity_;
     std::vector<EndEffectorModel> end_effectors_;
+    PerArm<typename EndEffectorModel::Inertia, Arms> inertias_{};
     PerArmVector3<Scalar, Arms> grasp_offsets_body_;
     PerArmQuaternion<Scalar, Arms> grasp_orientations_body_;
     Eigen::Matrix<Scalar, Arms, 1> end_effector_masses_;

@@ -4,10 +4,13 @@
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/detail/validation.hpp"
+#include "coopdyn/spatial/inertia.hpp"
 #include "coopdyn/spatial/pose.hpp"
 #include "coopdyn/spatial/quaternion.hpp"
 
 #include <string>
+#include <type_traits>
+#include <utility>
 
 namespace coopdyn {
 
@@ -20,10 +23,9 @@ namespace coopdyn {
 /// block-diagonal, which the interaction solver exploits at compile time.
 template <typename ScalarType> struct ImpedanceEndEffector {
     using Scalar = ScalarType;
-    /// M_i = diag(m_i I3, J_i): the interaction solver may use the block-diagonal fast path.
+    /// The inertia type of inertia(): block-diagonal, which the interaction solver exploits.
+    using Inertia = SpatialInertia<Scalar>;
     static constexpr bool has_block_diagonal_inertia = true;
-    /// The stiffness wrench is the gradient of a potential (translational and rotational springs).
-    static constexpr bool has_potential_energy = true;
 
     Scalar mass = Scalar(0);                                          ///< m_i, kg
     Matrix3<Scalar> rotational_inertia = Matrix3<Scalar>::Zero();     ///< J_i in {w}, kg m^2, SPD
@@ -32,13 +34,23 @@ template <typename ScalarType> struct ImpedanceEndEffector {
     Scalar translational_stiffness = Scalar(0);                       ///< k_i, N/m
     Scalar rotational_stiffness = Scalar(0);                          ///< kappa_i, N m/rad
 
-    /// M_i = diag(m_i I3, J_i), 6x6.
-    Matrix6<Scalar> inertia() const noexcept
+    /// M_i = diag(m_i I3, J_i) of (1).
+    Inertia inertia() const { return Inertia::block_diagonal(mass, rotational_inertia); }
+
+    /// D_i = diag(d_i I3, delta_i I3) of (1). Held in the block-diagonal spatial type because
+    /// its congruence G_i D_i G_i^T (32) is the same parallel-axis shift as the inertia's (31).
+    SpatialInertia<Scalar> damping() const
     {
-        Matrix6<Scalar> result = Matrix6<Scalar>::Zero();
-        result.template topLeftCorner<3, 3>().diagonal().setConstant(mass);
-        result.template bottomRightCorner<3, 3>() = rotational_inertia;
-        return result;
+        return SpatialInertia<Scalar>::block_diagonal(translational_damping,
+                                                      Symmetric3<Scalar>::scaled_identity(rotational_damping));
+    }
+
+    /// diag(k_i I3, kappa_i I3): the stiffness of (5) linearised about x_i = x_i^d, whose
+    /// congruence gives the apparent K of Theorem 2 (errata E3).
+    SpatialInertia<Scalar> stiffness() const
+    {
+        return SpatialInertia<Scalar>::block_diagonal(translational_stiffness,
+                                                      Symmetric3<Scalar>::scaled_identity(rotational_stiffness));
     }
 
     /// h_i^K = [k_i (p_i - p_i^d); 2 d_eta kappa_i d_eps] (5), dq = q_i (x) (q_i^d)^-1.
@@ -90,5 +102,21 @@ template <typename ScalarType> struct ImpedanceEndEffector {
         detail::require_non_negative(rotational_stiffness, context, "rotational_stiffness");
     }
 };
+
+/// \brief The impedance concept: an end-effector model with damping() and stiffness() (D_i and the
+/// linearised stiffness of (1), (5)) and a spring potential potential_energy(pose, desired).
+/// The apparent impedance (Theorem 2), the storage function (Lemma 1) and impedance synthesis
+/// accept exactly these models.
+template <typename EndEffector, typename = void> struct is_impedance_end_effector : std::false_type {};
+template <typename EndEffector>
+struct is_impedance_end_effector<
+    EndEffector,
+    std::void_t<decltype(std::declval<const EndEffector&>().damping()),
+                decltype(std::declval<const EndEffector&>().stiffness()),
+                decltype(std::declval<const EndEffector&>().potential_energy(
+                    std::declval<const Pose<typename EndEffector::Scalar>&>(),
+                    std::declval<const Pose<typename EndEffector::Scalar>&>()))>> : std::true_type {};
+template <typename EndEffector>
+inline constexpr bool is_impedance_end_effector_v = is_impedance_end_effector<EndEffector>::value;
 
 }  // namespace coopdyn

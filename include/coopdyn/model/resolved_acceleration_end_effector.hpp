@@ -5,6 +5,7 @@
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/detail/validation.hpp"
+#include "coopdyn/spatial/inertia.hpp"
 #include "coopdyn/spatial/pose.hpp"
 #include "coopdyn/spatial/quaternion.hpp"
 
@@ -20,16 +21,16 @@ namespace coopdyn {
 /// interaction solver takes its general path. Its motion wrench h_i^Pi plays the role of h_i^x.
 template <typename ScalarType> struct ResolvedAccelerationEndEffector {
     using Scalar = ScalarType;
+    /// The inertia type of inertia(): a general SPD 6x6 (the solver's general path).
+    using Inertia = ArticulatedInertia<Scalar>;
     static constexpr bool has_block_diagonal_inertia = false;
-    /// A PD law on the quaternion error with general gains has no potential in general.
-    static constexpr bool has_potential_energy = false;
 
     Matrix6<Scalar> apparent_inertia = Matrix6<Scalar>::Zero();   ///< Lambda_i in {w}, SPD
     Matrix6<Scalar> derivative_gain = Matrix6<Scalar>::Zero();    ///< K_D,i, 1/s
     Matrix6<Scalar> proportional_gain = Matrix6<Scalar>::Zero();  ///< K_P,i, 1/s^2
 
     /// Lambda_i.
-    Matrix6<Scalar> inertia() const noexcept { return apparent_inertia; }
+    Inertia inertia() const { return Inertia(apparent_inertia); }
 
     /// dx_i = [p_i - p_i^d; d_eps_i] of (20).
     Vector6<Scalar> pose_error(const Pose<Scalar>& pose, const Pose<Scalar>& desired) const noexcept

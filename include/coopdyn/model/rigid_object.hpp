@@ -4,6 +4,7 @@
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/detail/validation.hpp"
+#include "coopdyn/spatial/inertia.hpp"
 
 namespace coopdyn {
 
@@ -17,19 +18,19 @@ template <typename Scalar> struct RigidObject {
     Matrix3<Scalar> inertia_body = Matrix3<Scalar>::Zero();
 
     /// World-frame rotational inertia J_o = R(q) J_o_body R(q)^T (9).
-    Matrix3<Scalar> rotational_inertia(const Matrix3<Scalar>& rotation) const noexcept
+    Matrix3<Scalar> rotational_inertia(const Matrix3<Scalar>& rotation) const
     {
-        return rotation * inertia_body * rotation.transpose();
+        return Symmetric3<Scalar>(inertia_body).rotated(rotation).matrix();
     }
 
-    /// M_o = diag(m_o I3, J_o) (9), 6x6 in {w}.
-    Matrix6<Scalar> spatial_inertia(const Matrix3<Scalar>& rotation) const noexcept
+    /// M_o = diag(m_o I3, J_o) (9) in {w}, about the centre of mass, as a SpatialInertia.
+    SpatialInertia<Scalar> inertia(const Matrix3<Scalar>& rotation) const
     {
-        Matrix6<Scalar> result = Matrix6<Scalar>::Zero();
-        result.template topLeftCorner<3, 3>().diagonal().setConstant(mass);
-        result.template bottomRightCorner<3, 3>() = rotational_inertia(rotation);
-        return result;
+        return SpatialInertia<Scalar>::block_diagonal(mass, Symmetric3<Scalar>(inertia_body).rotated(rotation));
     }
+
+    /// M_o = diag(m_o I3, J_o) (9), the dense 6x6 matrix in {w}.
+    Matrix6<Scalar> spatial_inertia(const Matrix3<Scalar>& rotation) const { return inertia(rotation).matrix(); }
 
     /// C_o xdot_o = [0; w_o x (J_o w_o)] (9), with J_o in {w}.
     template <typename Derived>
