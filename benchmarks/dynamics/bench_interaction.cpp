@@ -26,6 +26,7 @@
 #include <Eigen/QR>
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -190,28 +191,34 @@ VectorX range_space_baseline(const MatrixX& M, const MatrixX& A, const VectorX& 
 // 1. Structured solver, block-diagonal inertias diag(m I3, J).
 // ---------------------------------------------------------------------------------------------
 
+/// The block-diagonal inertias of a case as the kernel takes them: diag(m_i I3, J_i) per arm.
+template <typename Inertias> void fill_block_diagonal(const Case& c, Inertias& inertias)
+{
+    for (Index i = 0; i < c.masses.size(); ++i) {
+        inertias[static_cast<std::size_t>(i)] =
+            coopdyn::SpatialInertia<double>::block_diagonal(c.masses(i), c.rotational.block<3, 3>(0, 3 * i));
+    }
+}
+
 template <int N> void BM_BlockDiagonalKernel(benchmark::State& state)
 {
     const Case& c = case_for(N);
-    const double object_mass = c.object_mass;
-    const Eigen::Matrix3d object_rotational = c.object_rotational;
-    const Eigen::Matrix<double, N, 1> masses = c.masses;
-    const coopdyn::PerArmMatrix3<double, N> rotational = c.rotational;
+    const auto object = coopdyn::SpatialInertia<double>::block_diagonal(c.object_mass, c.object_rotational);
+    std::array<coopdyn::SpatialInertia<double>, N> inertias;
+    fill_block_diagonal(c, inertias);
     const coopdyn::PerArmVector3<double, N> r = c.r;
     const Eigen::Vector3d omega = c.omega;
     const coopdyn::FullStackVector<double, N> h_sigma = c.h_sigma;
 
     if (!check(state,
-               coopdyn::interaction_wrenches_block_diagonal(object_mass, object_rotational, masses,
-                                                            rotational, r, omega, h_sigma),
+               coopdyn::interaction_wrenches(object, inertias, r, omega, h_sigma),
                reference(block_diagonal_system(c)))) {
         return;
     }
     for (auto _ : state) {
         // The inputs may change between ticks: ClobberMemory keeps the compiler from hoisting.
         benchmark::ClobberMemory();
-        auto h = coopdyn::interaction_wrenches_block_diagonal(object_mass, object_rotational, masses,
-                                                              rotational, r, omega, h_sigma);
+        auto h = coopdyn::interaction_wrenches(object, inertias, r, omega, h_sigma);
         benchmark::DoNotOptimize(h);
     }
 }
@@ -221,17 +228,16 @@ template <int N> void BM_BlockDiagonalDynamic(benchmark::State& state)
     const Case& c = case_for(N);
     VectorX accelerations = VectorX::Zero(6 * (N + 1));
     VectorX wrenches = VectorX::Zero(6 * (N + 1));
-    coopdyn::solve_interaction_dynamics_block_diagonal(c.object_mass, c.object_rotational, c.masses,
-                                                       c.rotational, c.r, c.omega, c.h_sigma,
-                                                       accelerations, wrenches);
+    const auto object = coopdyn::SpatialInertia<double>::block_diagonal(c.object_mass, c.object_rotational);
+    std::vector<coopdyn::SpatialInertia<double>> inertias(static_cast<std::size_t>(N));
+    fill_block_diagonal(c, inertias);
+    coopdyn::interaction_wrenches(object, inertias, c.r, c.omega, c.h_sigma, accelerations, wrenches);
     if (!check(state, wrenches, reference(block_diagonal_system(c)))) {
         return;
     }
     for (auto _ : state) {
         benchmark::ClobberMemory();
-        coopdyn::solve_interaction_dynamics_block_diagonal(c.object_mass, c.object_rotational, c.masses,
-                                                           c.rotational, c.r, c.omega, c.h_sigma,
-                                                           accelerations, wrenches);
+        coopdyn::interaction_wrenches(object, inertias, c.r, c.omega, c.h_sigma, accelerations, wrenches);
         benchmark::DoNotOptimize(wrenches.data());
         benchmark::DoNotOptimize(accelerations.data());
     }
@@ -266,15 +272,14 @@ template <int N> void BM_GeneralDynamic(benchmark::State& state)
     const Case& c = case_for(N);
     VectorX accelerations = VectorX::Zero(6 * (N + 1));
     VectorX wrenches = VectorX::Zero(6 * (N + 1));
-    coopdyn::solve_interaction_dynamics(c.object_general, c.general, c.r, c.omega, c.h_sigma, accelerations,
-                                        wrenches);
+    coopdyn::interaction_wrenches(c.object_general, c.general, c.r, c.omega, c.h_sigma, accelerations, wrenches);
     if (!check(state, wrenches, reference(general_system(c)))) {
         return;
     }
     for (auto _ : state) {
         benchmark::ClobberMemory();
-        coopdyn::solve_interaction_dynamics(c.object_general, c.general, c.r, c.omega, c.h_sigma,
-                                            accelerations, wrenches);
+        coopdyn::interaction_wrenches(c.object_general, c.general, c.r, c.omega, c.h_sigma, accelerations,
+                                      wrenches);
         benchmark::DoNotOptimize(wrenches.data());
         benchmark::DoNotOptimize(accelerations.data());
     }
@@ -290,7 +295,7 @@ template <int Arms> DenseSystem last_system(const TickFixture<Arms>& f)
     const Index arms = f.model.arms();
     MatrixX ee_inertias(6, 6 * arms);
     for (Index i = 0; i < arms; ++i) {
-        ee_inertias.block(0, 6 * i, 6, 6) = f.model.end_effector(i).inertia();
+        ee_inertias.block(0, 6 * i, 6, 6) = f.model.end_effector(i).inertia().matrix();
     }
     const MatrixX object_inertia = f.model.object().spatial_inertia(f.data.object_rotation);
     const Eigen::Matrix3Xd r = f.data.grasp_offsets;

@@ -11,13 +11,33 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <limits>
 #include <type_traits>
+#include <vector>
 
 namespace {
 
 using namespace coopdyn_test;
+
+/// diag(m_i I3, J_i) per arm, as the kernels take block-diagonal inertias: a std::array for a
+/// fixed N (Arms > 0), a std::vector otherwise.
+template <int Arms = 0, typename Masses, typename Rotational>
+auto block_diagonal_inertias(const Masses& masses, const Rotational& rotational)
+{
+    using Scalar = typename Masses::Scalar;
+    using Inertia = coopdyn::SpatialInertia<Scalar>;
+    std::conditional_t<Arms == 0, std::vector<Inertia>, std::array<Inertia, static_cast<std::size_t>(Arms)>> result{};
+    if constexpr (Arms == 0) {
+        result.resize(static_cast<std::size_t>(masses.size()));
+    }
+    for (Index i = 0; i < masses.size(); ++i) {
+        result[static_cast<std::size_t>(i)] =
+            Inertia::block_diagonal(masses(i), Eigen::Matrix<Scalar, 3, 3>(rotational.block(0, 3 * i, 3, 3)));
+    }
+    return result;
+}
 
 constexpr double tolerance = 1e-12;
 constexpr unsigned cases_per_arm_count = 30;
@@ -102,7 +122,7 @@ template <int N> struct FixedKernels {
         // NaN-filled outputs: every entry must be written by the kernel.
         Full accelerations = Full::Constant(nan);
         Full wrenches = Full::Constant(nan);
-        coopdyn::solve_interaction_dynamics(object, ee_fixed, r, p.omega, h_sigma, accelerations, wrenches);
+        coopdyn::interaction_wrenches(object, ee_fixed, r, p.omega, h_sigma, accelerations, wrenches);
         const Full returned = coopdyn::interaction_wrenches(object, ee_fixed, r, p.omega, h_sigma);
         static_assert(std::is_same<std::decay_t<decltype(returned)>, Full>::value, "fixed-size result");
         EXPECT_TRUE((returned.array() == wrenches.array()).all()) << "interaction_wrenches != solve_..._dynamics";
@@ -118,10 +138,10 @@ template <int N> struct FixedKernels {
         // NaN-filled outputs: every entry must be written by the kernel.
         Full accelerations = Full::Constant(nan);
         Full wrenches = Full::Constant(nan);
-        coopdyn::solve_interaction_dynamics_block_diagonal(p.object_mass, p.object_rotational, masses, rotational,
-                                                           r, p.omega, h_sigma, accelerations, wrenches);
-        const auto returned = coopdyn::interaction_wrenches_block_diagonal(p.object_mass, p.object_rotational,
-                                                                           masses, rotational, r, p.omega, h_sigma);
+        const auto object = coopdyn::SpatialInertia<double>::block_diagonal(p.object_mass, p.object_rotational);
+        const auto inertias = block_diagonal_inertias<N>(masses, rotational);
+        coopdyn::interaction_wrenches(object, inertias, r, p.omega, h_sigma, accelerations, wrenches);
+        const auto returned = coopdyn::interaction_wrenches(object, inertias, r, p.omega, h_sigma);
         static_assert(std::is_same<std::decay_t<decltype(returned)>, Full>::value, "fixed-size result");
         EXPECT_TRUE((returned.array() == wrenches.array()).all());
         return {accelerations, wrenches};
@@ -133,7 +153,7 @@ Result dynamic_general(const Matrix6d& object, const MatrixXd& ee, const Problem
     const MatrixXd object_dynamic = object;
     VectorXd accelerations = VectorXd::Constant(p.h_sigma.size(), nan);
     VectorXd wrenches = VectorXd::Constant(p.h_sigma.size(), nan);
-    coopdyn::solve_interaction_dynamics(object_dynamic, ee, p.r, p.omega, p.h_sigma, accelerations, wrenches);
+    coopdyn::interaction_wrenches(object_dynamic, ee, p.r, p.omega, p.h_sigma, accelerations, wrenches);
     const VectorXd returned = coopdyn::interaction_wrenches(object_dynamic, ee, p.r, p.omega, p.h_sigma);
     EXPECT_TRUE((returned.array() == wrenches.array()).all());
     return {accelerations, wrenches};
@@ -143,18 +163,18 @@ Result dynamic_block_diagonal(const Problem& p)
 {
     VectorXd accelerations = VectorXd::Constant(p.h_sigma.size(), nan);
     VectorXd wrenches = VectorXd::Constant(p.h_sigma.size(), nan);
-    coopdyn::solve_interaction_dynamics_block_diagonal(p.object_mass, p.object_rotational, p.ee_masses,
-                                                       p.ee_rotational, p.r, p.omega, p.h_sigma, accelerations,
-                                                       wrenches);
-    const VectorXd returned = coopdyn::interaction_wrenches_block_diagonal(
-        p.object_mass, p.object_rotational, p.ee_masses, p.ee_rotational, p.r, p.omega, p.h_sigma);
+    const auto object = coopdyn::SpatialInertia<double>::block_diagonal(p.object_mass, p.object_rotational);
+    const auto inertias = block_diagonal_inertias(p.ee_masses, p.ee_rotational);
+    coopdyn::interaction_wrenches(object, inertias, p.r, p.omega, p.h_sigma, accelerations, wrenches);
+    const VectorXd returned = coopdyn::interaction_wrenches(object, inertias, p.r, p.omega, p.h_sigma);
     EXPECT_TRUE((returned.array() == wrenches.array()).all());
 
-    // J_o given as a dynamic-size 3x3 matrix: J_o w is then Eigen's general matrix-vector product
-    // instead of the fixed 3x3 one, which may round differently (it is not an N effect).
+    // J_o given as a dynamic-size 3x3 matrix: the object inertia is built from its entries, so
+    // the result must not depend on how J_o was stored (it is not an N effect).
     const MatrixXd object_rotational_dynamic = p.object_rotational;
-    const VectorXd with_dynamic_object = coopdyn::interaction_wrenches_block_diagonal(
-        p.object_mass, object_rotational_dynamic, p.ee_masses, p.ee_rotational, p.r, p.omega, p.h_sigma);
+    const VectorXd with_dynamic_object = coopdyn::interaction_wrenches(
+        coopdyn::SpatialInertia<double>::block_diagonal(p.object_mass, object_rotational_dynamic), inertias, p.r,
+        p.omega, p.h_sigma);
     EXPECT_LT(relative_error(with_dynamic_object, wrenches), 1e-15);
     return {accelerations, wrenches};
 }
@@ -340,11 +360,13 @@ TEST(InteractionWrenchesFloat, FloatAgreesWithDouble)
         const Eigen::VectorXf masses_f = p.ee_masses.cast<float>();
         const Eigen::MatrixXf rotational_f = p.ee_rotational.cast<float>();
         const Eigen::Matrix3f object_rotational_f = p.object_rotational.cast<float>();
-        const Eigen::VectorXf h_block_f = coopdyn::interaction_wrenches_block_diagonal(
-            static_cast<float>(p.object_mass), object_rotational_f, masses_f, rotational_f,
-            Eigen::MatrixXf(p.r.cast<float>()), omega_f, Eigen::VectorXf(p.h_sigma.cast<float>()));
-        const VectorXd h_block = coopdyn::interaction_wrenches_block_diagonal(
-            p.object_mass, p.object_rotational, p.ee_masses, p.ee_rotational, p.r, p.omega, p.h_sigma);
+        const Eigen::VectorXf h_block_f = coopdyn::interaction_wrenches(
+            coopdyn::SpatialInertia<float>::block_diagonal(static_cast<float>(p.object_mass), object_rotational_f),
+            block_diagonal_inertias(masses_f, rotational_f), Eigen::MatrixXf(p.r.cast<float>()), omega_f,
+            Eigen::VectorXf(p.h_sigma.cast<float>()));
+        const VectorXd h_block =
+            coopdyn::interaction_wrenches(coopdyn::SpatialInertia<double>::block_diagonal(p.object_mass, p.object_rotational),
+                                          block_diagonal_inertias(p.ee_masses, p.ee_rotational), p.r, p.omega, p.h_sigma);
         const double block_error = relative_error(VectorXd(h_block_f.cast<double>()), h_block);
 
         EXPECT_LT(general_error, 1e-4) << "seed " << seed;

@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <vector>
 
 namespace {
@@ -209,17 +210,23 @@ TEST(NoAllocation, SolveKernelsIntoPreallocatedDynamicVectors)
     const VectorXd h_sigma = random_vector(6 * (arms + 1), rng);
     VectorXd accelerations = VectorXd::Zero(6 * (arms + 1));
     VectorXd wrenches = VectorXd::Zero(6 * (arms + 1));
+    // The block-diagonal inertias as the kernel takes them, built before counting.
+    const auto object_block = coopdyn::SpatialInertia<double>::block_diagonal(1.5, object_rotational);
+    std::vector<coopdyn::SpatialInertia<double>> ee_block;
+    for (Index i = 0; i < arms; ++i) {
+        ee_block.push_back(
+            coopdyn::SpatialInertia<double>::block_diagonal(masses(i), Matrix3d(rotational.block(0, 3 * i, 3, 3))));
+    }
 
     const Allocations general = count_allocations([&] {
-        coopdyn::solve_interaction_dynamics(object, ee, r, omega, h_sigma, accelerations, wrenches);
+        coopdyn::interaction_wrenches(object, ee, r, omega, h_sigma, accelerations, wrenches);
     });
     EXPECT_EQ(general.operator_new, 0);
     EXPECT_EQ(general.eigen, 0);
     EXPECT_TRUE(wrenches.allFinite());
 
     const Allocations block = count_allocations([&] {
-        coopdyn::solve_interaction_dynamics_block_diagonal(1.5, object_rotational, masses, rotational, r, omega,
-                                                           h_sigma, accelerations, wrenches);
+        coopdyn::interaction_wrenches(object_block, ee_block, r, omega, h_sigma, accelerations, wrenches);
     });
     EXPECT_EQ(block.operator_new, 0);
     EXPECT_EQ(block.eigen, 0);
@@ -241,11 +248,14 @@ TEST(NoAllocation, FixedSizeInteractionWrenches)
     rotational << random_spd(3, rng, 0.3), random_spd(3, rng, 0.3);
     Eigen::Matrix<double, 18, 1> wrenches = Eigen::Matrix<double, 18, 1>::Zero();
     Eigen::Matrix<double, 18, 1> block_wrenches = Eigen::Matrix<double, 18, 1>::Zero();
+    const auto object_block = coopdyn::SpatialInertia<double>::block_diagonal(2.5, object_rotational);
+    const std::array<coopdyn::SpatialInertia<double>, 2> ee_block{
+        coopdyn::SpatialInertia<double>::block_diagonal(masses(0), Matrix3d(rotational.block<3, 3>(0, 0))),
+        coopdyn::SpatialInertia<double>::block_diagonal(masses(1), Matrix3d(rotational.block<3, 3>(0, 3)))};
 
     const Allocations counts = count_allocations([&] {
         wrenches = coopdyn::interaction_wrenches(object, ee, r, omega, h_sigma);
-        block_wrenches = coopdyn::interaction_wrenches_block_diagonal(2.5, object_rotational, masses, rotational, r,
-                                                                      omega, h_sigma);
+        block_wrenches = coopdyn::interaction_wrenches(object_block, ee_block, r, omega, h_sigma);
     });
     EXPECT_EQ(counts.operator_new, 0);
     EXPECT_EQ(counts.eigen, 0);

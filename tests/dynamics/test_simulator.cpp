@@ -336,7 +336,7 @@ TEST(SimulatorEnergy, SemiImplicitEulerEnergyErrorStaysBounded)
         Eigen::Matrix<double, 6, 6> k = Eigen::Matrix<double, 6, 6>::Zero();
         k.topLeftCorner<3, 3>() = model.end_effector(i).translational_stiffness * Mat3::Identity();
         k.bottomRightCorner<3, 3>() = model.end_effector(i).rotational_stiffness * Mat3::Identity();
-        mass_matrix += g * model.end_effector(i).inertia() * g.transpose();
+        mass_matrix += g * model.end_effector(i).inertia().matrix() * g.transpose();
         stiffness_matrix += g * k * g.transpose();
     }
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> modes(stiffness_matrix, mass_matrix);

@@ -209,7 +209,7 @@ TEST(ImpedanceEndEffector, InertiaIsBlockDiagonal)
     Matrix6d expected = Matrix6d::Zero();
     expected.topLeftCorner<3, 3>() = ee.mass * Matrix3d::Identity();
     expected.bottomRightCorner<3, 3>() = ee.rotational_inertia;
-    EXPECT_EQ(ee.inertia(), expected);
+    EXPECT_EQ(ee.inertia().matrix(), expected);
 }
 
 // --- Motion wrench (6), literal re-implementation ---------------------------------------------
@@ -302,7 +302,7 @@ TEST(ResolvedAccelerationEndEffector, MotionWrenchMatchesLiteralEquation20)
         const double error = (actual - expected).norm() / std::max(1.0, expected.norm());
         worst = std::max(worst, error);
         EXPECT_LT(error, 1e-13) << "trial " << trial;
-        EXPECT_EQ(ee.inertia(), ee.apparent_inertia);
+        EXPECT_EQ(ee.inertia().matrix(), ee.apparent_inertia);
     }
     RecordProperty("worst_relative_error", scientific(worst));
 }
@@ -315,7 +315,7 @@ TEST(ResolvedAccelerationEndEffector, DiagonalGainsReduceToImpedanceForm)
     std::mt19937 rng(31008);
     const auto impedance = make_impedance(rng, 40.0);
     coopdyn::ResolvedAccelerationEndEffector<double> ra;
-    ra.apparent_inertia = impedance.inertia();
+    ra.apparent_inertia = impedance.inertia().matrix();
     Matrix6d damping = Matrix6d::Zero();
     damping.topLeftCorner<3, 3>() = impedance.translational_damping * Matrix3d::Identity();
     damping.bottomRightCorner<3, 3>() = impedance.rotational_damping * Matrix3d::Identity();

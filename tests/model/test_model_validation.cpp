@@ -354,7 +354,7 @@ TEST(ModelValidation, ValidModelKeepsExactParameterValues)
         EXPECT_EQ(model.end_effector_masses()(i), given.end_effector.mass);
         EXPECT_EQ(Matrix3d(model.end_effector_rotational_inertias().block<3, 3>(0, 3 * i)),
                   given.end_effector.rotational_inertia);
-        EXPECT_EQ(Matrix6d(model.end_effector_inertias().block<6, 6>(0, 6 * i)), given.end_effector.inertia());
+        EXPECT_EQ(Matrix6d(model.end_effector_inertias().block<6, 6>(0, 6 * i)), given.end_effector.inertia().matrix());
     }
     // Default gravity is (0, 0, -9.81).
     const Model2 default_gravity(object, arms);
