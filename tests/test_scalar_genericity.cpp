@@ -400,11 +400,11 @@ TEST(ScalarGenericity, KernelsCompileAndAgreeWithFloat)
     const Eigen::Matrix<float, 2, 1> masses(3.0f, 4.0f);
     Eigen::Matrix<float, 3, 6> rotational;
     rotational << 0.5f * Eigen::Matrix3f::Identity(), 0.3f * Eigen::Matrix3f::Identity();
-    const std::array<coopdyn::SpatialInertia<float>, 2> ee_block{
-        coopdyn::SpatialInertia<float>::block_diagonal(masses(0), Eigen::Matrix3f(rotational.block<3, 3>(0, 0))),
-        coopdyn::SpatialInertia<float>::block_diagonal(masses(1), Eigen::Matrix3f(rotational.block<3, 3>(0, 3)))};
+    const std::array<coopdyn::CentralInertia<float>, 2> ee_block{
+        coopdyn::CentralInertia<float>(masses(0), Eigen::Matrix3f(rotational.block<3, 3>(0, 0))),
+        coopdyn::CentralInertia<float>(masses(1), Eigen::Matrix3f(rotational.block<3, 3>(0, 3)))};
     const Eigen::Matrix<float, 18, 1> h_block = coopdyn::interaction_wrenches(
-        coopdyn::SpatialInertia<float>::block_diagonal(2.0f, object_inertia.bottomRightCorner<3, 3>().cast<float>().eval()),
+        coopdyn::CentralInertia<float>(2.0f, object_inertia.bottomRightCorner<3, 3>().cast<float>().eval()),
         ee_block, r.cast<float>(), omega.cast<float>(), h_sigma.cast<float>());
     EXPECT_TRUE(h_block.allFinite());
 }

@@ -196,15 +196,15 @@ template <typename Inertias> void fill_block_diagonal(const Case& c, Inertias& i
 {
     for (Index i = 0; i < c.masses.size(); ++i) {
         inertias[static_cast<std::size_t>(i)] =
-            coopdyn::SpatialInertia<double>::block_diagonal(c.masses(i), c.rotational.block<3, 3>(0, 3 * i));
+            coopdyn::CentralInertia<double>(c.masses(i), c.rotational.block<3, 3>(0, 3 * i));
     }
 }
 
 template <int N> void BM_BlockDiagonalKernel(benchmark::State& state)
 {
     const Case& c = case_for(N);
-    const auto object = coopdyn::SpatialInertia<double>::block_diagonal(c.object_mass, c.object_rotational);
-    std::array<coopdyn::SpatialInertia<double>, N> inertias;
+    const auto object = coopdyn::CentralInertia<double>(c.object_mass, c.object_rotational);
+    std::array<coopdyn::CentralInertia<double>, N> inertias;
     fill_block_diagonal(c, inertias);
     const coopdyn::PerArmVector3<double, N> r = c.r;
     const Eigen::Vector3d omega = c.omega;
@@ -228,8 +228,8 @@ template <int N> void BM_BlockDiagonalDynamic(benchmark::State& state)
     const Case& c = case_for(N);
     VectorX accelerations = VectorX::Zero(6 * (N + 1));
     VectorX wrenches = VectorX::Zero(6 * (N + 1));
-    const auto object = coopdyn::SpatialInertia<double>::block_diagonal(c.object_mass, c.object_rotational);
-    std::vector<coopdyn::SpatialInertia<double>> inertias(static_cast<std::size_t>(N));
+    const auto object = coopdyn::CentralInertia<double>(c.object_mass, c.object_rotational);
+    std::vector<coopdyn::CentralInertia<double>> inertias(static_cast<std::size_t>(N));
     fill_block_diagonal(c, inertias);
     coopdyn::interaction_wrenches(object, inertias, c.r, c.omega, c.h_sigma, accelerations, wrenches);
     if (!check(state, wrenches, reference(block_diagonal_system(c)))) {

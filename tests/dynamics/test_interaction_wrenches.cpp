@@ -27,14 +27,14 @@ template <int Arms = 0, typename Masses, typename Rotational>
 auto block_diagonal_inertias(const Masses& masses, const Rotational& rotational)
 {
     using Scalar = typename Masses::Scalar;
-    using Inertia = coopdyn::SpatialInertia<Scalar>;
+    using Inertia = coopdyn::CentralInertia<Scalar>;
     std::conditional_t<Arms == 0, std::vector<Inertia>, std::array<Inertia, static_cast<std::size_t>(Arms)>> result{};
     if constexpr (Arms == 0) {
         result.resize(static_cast<std::size_t>(masses.size()));
     }
     for (Index i = 0; i < masses.size(); ++i) {
         result[static_cast<std::size_t>(i)] =
-            Inertia::block_diagonal(masses(i), Eigen::Matrix<Scalar, 3, 3>(rotational.block(0, 3 * i, 3, 3)));
+            Inertia(masses(i), Eigen::Matrix<Scalar, 3, 3>(rotational.block(0, 3 * i, 3, 3)));
     }
     return result;
 }
@@ -138,7 +138,7 @@ template <int N> struct FixedKernels {
         // NaN-filled outputs: every entry must be written by the kernel.
         Full accelerations = Full::Constant(nan);
         Full wrenches = Full::Constant(nan);
-        const auto object = coopdyn::SpatialInertia<double>::block_diagonal(p.object_mass, p.object_rotational);
+        const auto object = coopdyn::CentralInertia<double>(p.object_mass, p.object_rotational);
         const auto inertias = block_diagonal_inertias<N>(masses, rotational);
         coopdyn::interaction_wrenches(object, inertias, r, p.omega, h_sigma, accelerations, wrenches);
         const auto returned = coopdyn::interaction_wrenches(object, inertias, r, p.omega, h_sigma);
@@ -163,7 +163,7 @@ Result dynamic_block_diagonal(const Problem& p)
 {
     VectorXd accelerations = VectorXd::Constant(p.h_sigma.size(), nan);
     VectorXd wrenches = VectorXd::Constant(p.h_sigma.size(), nan);
-    const auto object = coopdyn::SpatialInertia<double>::block_diagonal(p.object_mass, p.object_rotational);
+    const auto object = coopdyn::CentralInertia<double>(p.object_mass, p.object_rotational);
     const auto inertias = block_diagonal_inertias(p.ee_masses, p.ee_rotational);
     coopdyn::interaction_wrenches(object, inertias, p.r, p.omega, p.h_sigma, accelerations, wrenches);
     const VectorXd returned = coopdyn::interaction_wrenches(object, inertias, p.r, p.omega, p.h_sigma);
@@ -173,7 +173,7 @@ Result dynamic_block_diagonal(const Problem& p)
     // the result must not depend on how J_o was stored (it is not an N effect).
     const MatrixXd object_rotational_dynamic = p.object_rotational;
     const VectorXd with_dynamic_object = coopdyn::interaction_wrenches(
-        coopdyn::SpatialInertia<double>::block_diagonal(p.object_mass, object_rotational_dynamic), inertias, p.r,
+        coopdyn::CentralInertia<double>(p.object_mass, object_rotational_dynamic), inertias, p.r,
         p.omega, p.h_sigma);
     EXPECT_LT(relative_error(with_dynamic_object, wrenches), 1e-15);
     return {accelerations, wrenches};
@@ -361,11 +361,11 @@ TEST(InteractionWrenchesFloat, FloatAgreesWithDouble)
         const Eigen::MatrixXf rotational_f = p.ee_rotational.cast<float>();
         const Eigen::Matrix3f object_rotational_f = p.object_rotational.cast<float>();
         const Eigen::VectorXf h_block_f = coopdyn::interaction_wrenches(
-            coopdyn::SpatialInertia<float>::block_diagonal(static_cast<float>(p.object_mass), object_rotational_f),
+            coopdyn::CentralInertia<float>(static_cast<float>(p.object_mass), object_rotational_f),
             block_diagonal_inertias(masses_f, rotational_f), Eigen::MatrixXf(p.r.cast<float>()), omega_f,
             Eigen::VectorXf(p.h_sigma.cast<float>()));
         const VectorXd h_block =
-            coopdyn::interaction_wrenches(coopdyn::SpatialInertia<double>::block_diagonal(p.object_mass, p.object_rotational),
+            coopdyn::interaction_wrenches(coopdyn::CentralInertia<double>(p.object_mass, p.object_rotational),
                                           block_diagonal_inertias(p.ee_masses, p.ee_rotational), p.r, p.omega, p.h_sigma);
         const double block_error = relative_error(VectorXd(h_block_f.cast<double>()), h_block);
 

@@ -211,11 +211,11 @@ TEST(NoAllocation, SolveKernelsIntoPreallocatedDynamicVectors)
     VectorXd accelerations = VectorXd::Zero(6 * (arms + 1));
     VectorXd wrenches = VectorXd::Zero(6 * (arms + 1));
     // The block-diagonal inertias as the kernel takes them, built before counting.
-    const auto object_block = coopdyn::SpatialInertia<double>::block_diagonal(1.5, object_rotational);
-    std::vector<coopdyn::SpatialInertia<double>> ee_block;
+    const auto object_block = coopdyn::CentralInertia<double>(1.5, object_rotational);
+    std::vector<coopdyn::CentralInertia<double>> ee_block;
     for (Index i = 0; i < arms; ++i) {
         ee_block.push_back(
-            coopdyn::SpatialInertia<double>::block_diagonal(masses(i), Matrix3d(rotational.block(0, 3 * i, 3, 3))));
+            coopdyn::CentralInertia<double>(masses(i), Matrix3d(rotational.block(0, 3 * i, 3, 3))));
     }
 
     const Allocations general = count_allocations([&] {
@@ -248,10 +248,10 @@ TEST(NoAllocation, FixedSizeInteractionWrenches)
     rotational << random_spd(3, rng, 0.3), random_spd(3, rng, 0.3);
     Eigen::Matrix<double, 18, 1> wrenches = Eigen::Matrix<double, 18, 1>::Zero();
     Eigen::Matrix<double, 18, 1> block_wrenches = Eigen::Matrix<double, 18, 1>::Zero();
-    const auto object_block = coopdyn::SpatialInertia<double>::block_diagonal(2.5, object_rotational);
-    const std::array<coopdyn::SpatialInertia<double>, 2> ee_block{
-        coopdyn::SpatialInertia<double>::block_diagonal(masses(0), Matrix3d(rotational.block<3, 3>(0, 0))),
-        coopdyn::SpatialInertia<double>::block_diagonal(masses(1), Matrix3d(rotational.block<3, 3>(0, 3)))};
+    const auto object_block = coopdyn::CentralInertia<double>(2.5, object_rotational);
+    const std::array<coopdyn::CentralInertia<double>, 2> ee_block{
+        coopdyn::CentralInertia<double>(masses(0), Matrix3d(rotational.block<3, 3>(0, 0))),
+        coopdyn::CentralInertia<double>(masses(1), Matrix3d(rotational.block<3, 3>(0, 3)))};
 
     const Allocations counts = count_allocations([&] {
         wrenches = coopdyn::interaction_wrenches(object, ee, r, omega, h_sigma);

@@ -65,7 +65,7 @@ interaction_dynamics(const ModelType& model, Data<ModelType>& data,
         data.object_rotational_inertia, object_state.twist, disturbances.object, model.gravity());
 
     // The inertias' types choose the solver's path (closed form for diag(m I3, J) bodies).
-    interaction_wrenches(SpatialInertia<Scalar>::block_diagonal(model.object().mass, data.object_rotational_inertia),
+    interaction_wrenches(CentralInertia<Scalar>(model.object().mass, data.object_rotational_inertia),
                          model.end_effector_inertia_list(), data.grasp_offsets,
                          object_state.twist.template tail<3>(), data.h_sigma, data.accelerations, data.wrenches);
     return data.wrenches;

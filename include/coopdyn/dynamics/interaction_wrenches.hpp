@@ -14,13 +14,13 @@
 ///
 /// One overload set, `interaction_wrenches`, for every inertia structure; the inertias' types
 /// choose the path at compile time:
-/// - SpatialInertia (block-diagonal diag(m I3, J) bodies, e.g. the impedance end-effector (1)):
-///   Ma is a rigid-body inertia, solved in closed form through its 3x3 rotational Schur
-///   complement (SpatialInertia::solve);
+/// - CentralInertia (diag(m I3, J) bodies, e.g. the impedance end-effector (1)) or
+///   SpatialInertia: Ma is a rigid-body inertia, solved in closed form through its 3x3
+///   rotational Schur complement (SpatialInertia::solve);
 /// - ArticulatedInertia, or dense 6x6 matrices (general SPD, e.g. the resolved-acceleration
 ///   Lambda_i of (21)): Ma is a general SPD 6x6, factorised (ArticulatedInertia::solve).
 /// End-effector inertias are passed as a 6 x 6N dense stack or as any random-access container of
-/// SpatialInertia / ArticulatedInertia (std::array, std::vector, Model::end_effector_inertia_list()).
+/// CentralInertia / SpatialInertia / ArticulatedInertia (std::array, std::vector, Model::end_effector_inertia_list()).
 ///
 /// Arguments follow the kernels' order (docs/conventions.md): inertias, geometry r, state omega_o,
 /// inputs h_sigma, then outputs.
@@ -30,6 +30,7 @@
 #include "coopdyn/spatial/inertia.hpp"
 #include "coopdyn/spatial/spatial_vector.hpp"
 
+#include <cstddef>
 #include <type_traits>
 
 namespace coopdyn {
@@ -38,6 +39,12 @@ namespace detail {
 template <typename T> struct is_spatial_inertia : std::false_type {};
 template <typename Scalar> struct is_spatial_inertia<SpatialInertia<Scalar>> : std::true_type {};
 template <typename Scalar> struct is_spatial_inertia<ArticulatedInertia<Scalar>> : std::true_type {};
+template <typename Scalar> struct is_spatial_inertia<CentralInertia<Scalar>> : std::true_type {};
+
+/// Rigid-body inertias (central or not) sum to a rigid-body inertia.
+template <typename T> struct is_rigid_body_inertia : std::false_type {};
+template <typename Scalar> struct is_rigid_body_inertia<SpatialInertia<Scalar>> : std::true_type {};
+template <typename Scalar> struct is_rigid_body_inertia<CentralInertia<Scalar>> : std::true_type {};
 
 /// An object inertia argument as a spatial type: dense 6x6 matrices become ArticulatedInertia.
 template <typename Derived>
@@ -55,11 +62,11 @@ const Inertia& as_inertia(const Inertia& inertia) noexcept
 /// The end-effector inertias of a dense 6 x 6N stack, read block by block as ArticulatedInertia.
 template <typename Derived> struct DenseInertiaStack {
     const Eigen::MatrixBase<Derived>& stack;
-    ArticulatedInertia<typename Derived::Scalar> operator[](Index arm) const noexcept
+    ArticulatedInertia<typename Derived::Scalar> operator[](std::size_t arm) const noexcept
     {
-        return ArticulatedInertia<typename Derived::Scalar>(stack.template block<6, 6>(0, 6 * arm));
+        return ArticulatedInertia<typename Derived::Scalar>(stack.template block<6, 6>(0, 6 * static_cast<Index>(arm)));
     }
-    Index size() const noexcept { return stack.cols() / 6; }
+    std::size_t size() const noexcept { return static_cast<std::size_t>(stack.cols() / 6); }
 };
 
 /// End-effector inertia arguments as an indexable sequence of spatial inertias.
@@ -69,7 +76,7 @@ template <typename Derived> DenseInertiaStack<Derived> as_inertia_sequence(const
     return DenseInertiaStack<Derived>{stack};
 }
 template <typename Container,
-          std::enable_if_t<is_spatial_inertia<std::decay_t<decltype(std::declval<const Container&>()[0])>>::value,
+          std::enable_if_t<is_spatial_inertia<std::decay_t<decltype(std::declval<const Container&>()[std::size_t(0)])>>::value,
                            int> = 0>
 const Container& as_inertia_sequence(const Container& inertias) noexcept
 {
@@ -78,13 +85,12 @@ const Container& as_inertia_sequence(const Container& inertias) noexcept
 
 /// The inertia type of one element of an inertia sequence.
 template <typename Sequence>
-using element_inertia_t = std::decay_t<decltype(std::declval<const Sequence&>()[Index(0)])>;
+using element_inertia_t = std::decay_t<decltype(std::declval<const Sequence&>()[std::size_t(0)])>;
 
 /// The composite inertia's type: a rigid-body inertia when every part is one, general otherwise.
 template <typename ObjectInertia, typename EndEffectorInertia>
 using composite_inertia_t =
-    std::conditional_t<std::is_same_v<ObjectInertia, SpatialInertia<typename ObjectInertia::Scalar>> &&
-                           std::is_same_v<EndEffectorInertia, SpatialInertia<typename ObjectInertia::Scalar>>,
+    std::conditional_t<is_rigid_body_inertia<ObjectInertia>::value && is_rigid_body_inertia<EndEffectorInertia>::value,
                        SpatialInertia<typename ObjectInertia::Scalar>, ArticulatedInertia<typename ObjectInertia::Scalar>>;
 
 template <typename Composite, typename Inertia> Composite composite_from(const Inertia& inertia) noexcept
@@ -122,27 +128,29 @@ solve_interaction(const ObjectInertia& object, const EndEffectorInertias& end_ef
     COOPDYN_ASSERT(arm_accelerations_out.size() == 6 * arms, "accelerations must have 6(N+1) entries");
     COOPDYN_ASSERT(arm_wrenches_out.size() == 6 * arms, "wrenches must have 6(N+1) entries");
 
-    const Vector3<Scalar> omega = omega_o;
+    // 3-vectors are built from scalars on this path (see detail::cross for why).
+    const Vector3<Scalar> omega(omega_o(0), omega_o(1), omega_o(2));
     Composite composite = composite_from<Composite>(object);
     Force<Scalar> rhs = object_h_sigma;
     for (Index i = 0; i < arms; ++i) {
-        const Vector3<Scalar> r_i = r.col(i).template head<3>();
-        const auto& inertia = end_effectors[i];
+        const Vector3<Scalar> r_i(r(0, i), r(1, i), r(2, i));
+        const auto& inertia = end_effectors[static_cast<std::size_t>(i)];
         composite.add_shifted(inertia, r_i);
         // G_i (hSigma_i - M_i b_i), b_i = [S(w_o)^2 r_i; 0]
-        const Motion<Scalar> bias = Motion<Scalar>::make(centripetal_acceleration(r_i, omega), Vector3<Scalar>::Zero());
-        rhs += (Force<Scalar>::from(arm_h_sigma.template segment<6>(6 * i)) - inertia * bias).shifted(r_i);
+        rhs += (Force<Scalar>::from(arm_h_sigma.template segment<6>(6 * i)) -
+                inertia.apply_translation(centripetal_acceleration(r_i, omega)))
+                   .shifted(r_i);
     }
 
     const Motion<Scalar> object_acceleration = composite.solve(rhs);
     object_wrench = object * object_acceleration - object_h_sigma;
     for (Index i = 0; i < arms; ++i) {
-        const Vector3<Scalar> r_i = r.col(i).template head<3>();
+        const Vector3<Scalar> r_i(r(0, i), r(1, i), r(2, i));
         // xdd_i = G_i^T xdd_o + b_i, h_i = M_i xdd_i - hSigma_i
         Motion<Scalar> acceleration = object_acceleration.at_point(r_i);
-        acceleration.linear += centripetal_acceleration(r_i, omega);
+        acceleration += Motion<Scalar>::make(centripetal_acceleration(r_i, omega), Vector3<Scalar>::Zero());
         acceleration.write_to(arm_accelerations.template segment<6>(6 * i));
-        (end_effectors[i] * acceleration - Force<Scalar>::from(arm_h_sigma.template segment<6>(6 * i)))
+        (end_effectors[static_cast<std::size_t>(i)] * acceleration - Force<Scalar>::from(arm_h_sigma.template segment<6>(6 * i)))
             .write_to(arm_wrenches.template segment<6>(6 * i));
     }
     return object_acceleration;

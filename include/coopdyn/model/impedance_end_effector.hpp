@@ -23,8 +23,8 @@ namespace coopdyn {
 /// block-diagonal, which the interaction solver exploits at compile time.
 template <typename ScalarType> struct ImpedanceEndEffector {
     using Scalar = ScalarType;
-    /// The inertia type of inertia(): block-diagonal, which the interaction solver exploits.
-    using Inertia = SpatialInertia<Scalar>;
+    /// The inertia type of inertia(): diag(m_i I3, J_i), the interaction solver's fast path.
+    using Inertia = CentralInertia<Scalar>;
     static constexpr bool has_block_diagonal_inertia = true;
 
     Scalar mass = Scalar(0);                                          ///< m_i, kg
@@ -35,22 +35,20 @@ template <typename ScalarType> struct ImpedanceEndEffector {
     Scalar rotational_stiffness = Scalar(0);                          ///< kappa_i, N m/rad
 
     /// M_i = diag(m_i I3, J_i) of (1).
-    Inertia inertia() const { return Inertia::block_diagonal(mass, rotational_inertia); }
+    Inertia inertia() const { return Inertia(mass, rotational_inertia); }
 
-    /// D_i = diag(d_i I3, delta_i I3) of (1). Held in the block-diagonal spatial type because
-    /// its congruence G_i D_i G_i^T (32) is the same parallel-axis shift as the inertia's (31).
-    SpatialInertia<Scalar> damping() const
+    /// D_i = diag(d_i I3, delta_i I3) of (1). Held in the central-inertia type because its
+    /// congruence G_i D_i G_i^T (32) is the same parallel-axis shift as the inertia's (31).
+    CentralInertia<Scalar> damping() const
     {
-        return SpatialInertia<Scalar>::block_diagonal(translational_damping,
-                                                      Symmetric3<Scalar>::scaled_identity(rotational_damping));
+        return CentralInertia<Scalar>(translational_damping, Symmetric3<Scalar>::scaled_identity(rotational_damping));
     }
 
     /// diag(k_i I3, kappa_i I3): the stiffness of (5) linearised about x_i = x_i^d, whose
     /// congruence gives the apparent K of Theorem 2 (errata E3).
-    SpatialInertia<Scalar> stiffness() const
+    CentralInertia<Scalar> stiffness() const
     {
-        return SpatialInertia<Scalar>::block_diagonal(translational_stiffness,
-                                                      Symmetric3<Scalar>::scaled_identity(rotational_stiffness));
+        return CentralInertia<Scalar>(translational_stiffness, Symmetric3<Scalar>::scaled_identity(rotational_stiffness));
     }
 
     /// h_i^K = [k_i (p_i - p_i^d); 2 d_eta kappa_i d_eps] (5), dq = q_i (x) (q_i^d)^-1.

@@ -20,13 +20,13 @@ template <typename Scalar> struct RigidObject {
     /// World-frame rotational inertia J_o = R(q) J_o_body R(q)^T (9).
     Matrix3<Scalar> rotational_inertia(const Matrix3<Scalar>& rotation) const
     {
-        return Symmetric3<Scalar>(inertia_body).rotated(rotation).matrix();
+        return inertia(rotation).rotational().matrix();
     }
 
-    /// M_o = diag(m_o I3, J_o) (9) in {w}, about the centre of mass, as a SpatialInertia.
-    SpatialInertia<Scalar> inertia(const Matrix3<Scalar>& rotation) const
+    /// M_o = diag(m_o I3, J_o) (9) in {w}, about the centre of mass.
+    CentralInertia<Scalar> inertia(const Matrix3<Scalar>& rotation) const
     {
-        return SpatialInertia<Scalar>::block_diagonal(mass, Symmetric3<Scalar>(inertia_body).rotated(rotation));
+        return CentralInertia<Scalar>(mass, inertia_body).rotated(rotation);
     }
 
     /// M_o = diag(m_o I3, J_o) (9), the dense 6x6 matrix in {w}.

@@ -16,6 +16,79 @@
 
 namespace coopdyn {
 
+template <typename ScalarType> class SpatialInertia;
+
+/// \brief Inertia of a body about its own centre of mass, diag(m I3, I_c): the end-effector
+/// inertia diag(m_i I3, J_i) of (1) and the object's diag(m_o I3, J_o) of (9).
+///
+/// The type is the fast path of the interaction solver: a central inertia has no first moment,
+/// so applying, shifting and adding it costs about half of a general SpatialInertia's
+/// operations. shifted(r) gives the general SpatialInertia it becomes seen from another point.
+template <typename ScalarType> class CentralInertia {
+public:
+    using Scalar = ScalarType;
+
+    CentralInertia() : mass_(0) {}
+    CentralInertia(const Scalar& mass, const Symmetric3<Scalar>& rotational) : mass_(mass), rotational_(rotational) {}
+    /// From a dense 3x3 rotational inertia (only its lower triangle is read).
+    template <typename Derived>
+    CentralInertia(const Scalar& mass, const Eigen::MatrixBase<Derived>& rotational)
+        : mass_(mass), rotational_(rotational)
+    {
+    }
+
+    static CentralInertia Zero() { return CentralInertia(); }
+
+    const Scalar& mass() const noexcept { return mass_; }
+    /// I_c, about the centre of mass.
+    const Symmetric3<Scalar>& rotational() const noexcept { return rotational_; }
+
+    /// The dense 6x6 matrix diag(m I3, I_c).
+    Matrix6<Scalar> matrix() const
+    {
+        Matrix6<Scalar> result = Matrix6<Scalar>::Zero();
+        result.template topLeftCorner<3, 3>().diagonal().setConstant(mass_);
+        result.template bottomRightCorner<3, 3>() = rotational_.matrix();
+        return result;
+    }
+    /// M a = [m v; I_c w].
+    Force<Scalar> operator*(const Motion<Scalar>& motion) const noexcept
+    {
+        return Force<Scalar>::make(detail::scaled(mass_, motion.linear), rotational_ * motion.angular);
+    }
+    /// M [a; 0] = [m a; 0], the inertial force of a pure translational acceleration.
+    template <typename Derived> Force<Scalar> apply_translation(const Eigen::MatrixBase<Derived>& a) const noexcept
+    {
+        return Force<Scalar>::make(detail::scaled(mass_, a), Vector3<Scalar>::Zero());
+    }
+    /// G(r) M G(r)^T = [[m I3, m S(r)^T], [m S(r), I_c + m S(r) S(r)^T]]: the parallel-axis
+    /// theorem, the arm's term of (31) for r = r_i.
+    template <typename Derived> SpatialInertia<Scalar> shifted(const Eigen::MatrixBase<Derived>& r) const noexcept;
+    /// diag(R, R) M diag(R, R)^T (e.g. J_o = R J_o_body R^T, (9)).
+    template <typename Derived> CentralInertia rotated(const Eigen::MatrixBase<Derived>& rotation) const
+    {
+        return CentralInertia(mass_, rotational_.rotated(rotation));
+    }
+    /// v = f / m, w = I_c^-1 t (preconditions as SpatialInertia::solve).
+    Motion<Scalar> solve(const Force<Scalar>& force) const noexcept
+    {
+        COOPDYN_ASSERT(mass_ > Scalar(0), "CentralInertia::solve needs a positive mass");
+        return Motion<Scalar>::make(detail::scaled(Scalar(1) / mass_, force.linear), rotational_.solve(force.angular));
+    }
+    Scalar kinetic_energy(const Motion<Scalar>& twist) const noexcept
+    {
+        return Scalar(0.5) * twist.dot((*this) * twist);
+    }
+    template <typename Other> CentralInertia<Other> cast() const
+    {
+        return CentralInertia<Other>(Other(mass_), rotational_.template cast<Other>());
+    }
+
+private:
+    Scalar mass_;
+    Symmetric3<Scalar> rotational_;
+};
+
 /// \brief Inertia of a rigid body about a reference point: mass m, first moment h = m c (c the
 /// centre of mass relative to the reference point) and rotational inertia I about the reference
 /// point, so that
@@ -55,6 +128,11 @@ public:
         return SpatialInertia(mass, mass * centre, rotational);
     }
     static SpatialInertia Zero() { return SpatialInertia(); }
+    /// A central inertia diag(m I3, I_c) as a spatial inertia about its centre of mass (h = 0).
+    SpatialInertia(const CentralInertia<Scalar>& central)  // NOLINT: implicit, a central inertia is one
+        : mass_(central.mass()), first_moment_(Vector3<Scalar>::Zero()), rotational_(central.rotational())
+    {
+    }
 
     const Scalar& mass() const noexcept { return mass_; }
     /// h = m c.
@@ -85,8 +163,8 @@ public:
     /// M a: [m v - h x w; h x v + I w].
     Force<Scalar> operator*(const Motion<Scalar>& motion) const noexcept
     {
-        return Force<Scalar>::make(mass_ * motion.linear - first_moment_.cross(motion.angular),
-                                   first_moment_.cross(motion.linear) + rotational_ * motion.angular);
+        return Force<Scalar>::make(mass_ * motion.linear - detail::cross(first_moment_, motion.angular),
+                                   detail::cross(first_moment_, motion.linear) + rotational_ * motion.angular);
     }
 
     /// G(r) M G(r)^T with G(r) = [[I3, 0], [S(r), I3]]: this inertia, attached at the point
@@ -124,6 +202,27 @@ public:
         rotational_.zy -= h(2) * r(1) + r(2) * h(1);
     }
 
+    /// this += other.shifted(r) for a central inertia: mass, first moment m r and the
+    /// parallel-axis term I_c + m S(r) S(r)^T (the fast path of the composite inertia).
+    template <typename Derived>
+    void add_shifted(const CentralInertia<Scalar>& other, const Eigen::MatrixBase<Derived>& r) noexcept
+    {
+        EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
+        const Scalar m = other.mass();
+        mass_ += m;
+        for (int k = 0; k < 3; ++k) {
+            first_moment_(k) += m * r(k);
+        }
+        rotational_ += other.rotational();
+        rotational_.add_skew_square(m, r);
+    }
+
+    /// M [a; 0] = [m a; h x a].
+    template <typename Derived> Force<Scalar> apply_translation(const Eigen::MatrixBase<Derived>& a) const noexcept
+    {
+        return Force<Scalar>::make(mass_ * a, detail::cross(first_moment_, a));
+    }
+
     /// diag(R, R) M diag(R, R)^T: the same inertia in the frame R rotates into (e.g. from the body
     /// frame into {w}, (9)).
     template <typename Derived> SpatialInertia rotated(const Eigen::MatrixBase<Derived>& rotation) const
@@ -154,12 +253,20 @@ public:
     Motion<Scalar> solve(const Force<Scalar>& force) const noexcept
     {
         COOPDYN_ASSERT(mass_ > Scalar(0), "SpatialInertia::solve needs a positive mass");
+        // In scalars (see detail::cross): this is the latency-critical step of the tick.
         const Scalar inverse_mass = Scalar(1) / mass_;
-        const Vector3<Scalar> centre = inverse_mass * first_moment_;
+        const Vector3<Scalar> centre = detail::scaled(inverse_mass, first_moment_);
         Symmetric3<Scalar> about_centre = rotational_;
         about_centre.add_skew_square(-mass_, centre);
-        const Vector3<Scalar> angular = about_centre.solve(Vector3<Scalar>(force.angular - centre.cross(force.linear)));
-        return Motion<Scalar>::make(inverse_mass * force.linear + centre.cross(angular), angular);
+        const Vector3<Scalar> torque_about_centre = detail::cross(centre, force.linear);
+        const Vector3<Scalar> angular = about_centre.solve(
+            Vector3<Scalar>(force.angular(0) - torque_about_centre(0), force.angular(1) - torque_about_centre(1),
+                            force.angular(2) - torque_about_centre(2)));
+        const Vector3<Scalar> carried = detail::cross(centre, angular);
+        return Motion<Scalar>::make(Vector3<Scalar>(inverse_mass * force.linear(0) + carried(0),
+                                                    inverse_mass * force.linear(1) + carried(1),
+                                                    inverse_mass * force.linear(2) + carried(2)),
+                                    angular);
     }
 
     /// 1/2 a^T M a, the kinetic energy of the twist a.
@@ -179,6 +286,15 @@ private:
     Vector3<Scalar> first_moment_;
     Symmetric3<Scalar> rotational_;
 };
+
+template <typename Scalar>
+template <typename Derived>
+SpatialInertia<Scalar> CentralInertia<Scalar>::shifted(const Eigen::MatrixBase<Derived>& r) const noexcept
+{
+    SpatialInertia<Scalar> result;
+    result.add_shifted(*this, r);
+    return result;
+}
 
 /// \brief A general symmetric 6x6 inertia [[A, H^T], [H, C]] (A, C symmetric), the structure of
 /// an articulated-body or task-space inertia such as Lambda_i of (21). Same operations as
@@ -208,6 +324,7 @@ public:
           angular_(inertia.rotational())
     {
     }
+    explicit ArticulatedInertia(const CentralInertia<Scalar>& inertia) : ArticulatedInertia(SpatialInertia<Scalar>(inertia)) {}
     static ArticulatedInertia Zero() { return ArticulatedInertia(); }
 
     /// A (top-left), H (bottom-left), C (bottom-right).
@@ -231,6 +348,12 @@ public:
                                    coupling_ * motion.linear + angular_ * motion.angular);
     }
 
+    /// X [a; 0] = [A a; H a].
+    template <typename Derived> Force<Scalar> apply_translation(const Eigen::MatrixBase<Derived>& a) const noexcept
+    {
+        return Force<Scalar>::make(linear_ * a, coupling_ * a);
+    }
+
     /// G(r) X G(r)^T (see SpatialInertia::shifted): with S = S(r),
     /// A' = A, H' = H + S A, C' = C + S A S^T + S H^T + H S^T.
     template <typename Derived> ArticulatedInertia shifted(const Eigen::MatrixBase<Derived>& r) const
@@ -251,6 +374,10 @@ public:
         angular_ += other.angular_ + Symmetric3<Scalar>(Matrix3<Scalar>(s_a * s.transpose() + h_s + h_s.transpose()));
     }
     template <typename Derived> void add_shifted(const SpatialInertia<Scalar>& other, const Eigen::MatrixBase<Derived>& r)
+    {
+        *this += ArticulatedInertia(other.shifted(r));
+    }
+    template <typename Derived> void add_shifted(const CentralInertia<Scalar>& other, const Eigen::MatrixBase<Derived>& r)
     {
         *this += ArticulatedInertia(other.shifted(r));
     }

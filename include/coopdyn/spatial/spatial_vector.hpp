@@ -16,28 +16,45 @@
 namespace coopdyn {
 
 namespace detail {
+/// a x b written out in scalars. Why not Eigen's cross(): on the per-tick path the operands are
+/// short-lived locals; Eigen's packet cross product (and GCC's SLP vectoriser on the expression
+/// form) stores them as 2- or 4-wide packets that the next scalar loads straddle, a
+/// store-to-load forwarding stall that cost g++ 12 about a factor of 2 on the interaction solve.
+template <typename DerivedA, typename DerivedB>
+Vector3<typename DerivedA::Scalar> cross(const Eigen::MatrixBase<DerivedA>& a, const Eigen::MatrixBase<DerivedB>& b) noexcept
+{
+    using Scalar = typename DerivedA::Scalar;
+    const Scalar ax = a(0), ay = a(1), az = a(2), bx = b(0), by = b(1), bz = b(2);
+    return Vector3<Scalar>(ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx);
+}
+
+/// s a written out in scalars (see cross).
+template <typename Derived>
+Vector3<typename Derived::Scalar> scaled(const typename Derived::Scalar& s, const Eigen::MatrixBase<Derived>& a) noexcept
+{
+    return Vector3<typename Derived::Scalar>(s * a(0), s * a(1), s * a(2));
+}
+
 /// What Motion and Force share: two 3-vectors, conversion from and to stacked 6-vectors, and the
 /// vector-space operations. Derived is Motion<Scalar> or Force<Scalar> (the two never mix).
 template <typename Derived, typename ScalarType> struct SpatialVectorBase {
     using Scalar = ScalarType;
-    Vector3<Scalar> linear = Vector3<Scalar>::Zero();
-    Vector3<Scalar> angular = Vector3<Scalar>::Zero();
+    Vector3<Scalar> linear;
+    Vector3<Scalar> angular;
 
+    SpatialVectorBase() : linear(Scalar(0), Scalar(0), Scalar(0)), angular(Scalar(0), Scalar(0), Scalar(0)) {}
     /// From a stacked 6-vector [linear; angular].
     template <typename Six> static Derived from(const Eigen::MatrixBase<Six>& six) noexcept
     {
         EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Six, 6);
-        Derived result;
-        result.linear = six.template head<3>();
-        result.angular = six.template tail<3>();
-        return result;
+        return make(six.template head<3>(), six.template tail<3>());
     }
     static Derived Zero() noexcept { return Derived{}; }
     /// The stacked 6-vector [linear; angular].
     Vector6<Scalar> vector() const noexcept
     {
         Vector6<Scalar> result;
-        result << linear, angular;
+        write_to(result);
         return result;
     }
     /// Writes [linear; angular] into a 6-vector expression (a segment of a stack, a Map).
@@ -45,32 +62,49 @@ template <typename Derived, typename ScalarType> struct SpatialVectorBase {
     {
         EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Six, 6);
         auto& six = const_cast<Eigen::MatrixBase<Six>&>(six_out);  // Eigen's idiom for writable expressions
-        six.template head<3>() = linear;
-        six.template tail<3>() = angular;
+        for (int k = 0; k < 3; ++k) {
+            six(k) = linear(k);
+            six(k + 3) = angular(k);
+        }
     }
 
+    // Element by element in scalars: see detail::cross for why not Eigen's expressions.
     Derived& operator+=(const Derived& other) noexcept
     {
-        linear += other.linear;
-        angular += other.angular;
+        for (int k = 0; k < 3; ++k) {
+            linear(k) += other.linear(k);
+            angular(k) += other.angular(k);
+        }
         return self();
     }
     Derived& operator-=(const Derived& other) noexcept
     {
-        linear -= other.linear;
-        angular -= other.angular;
+        for (int k = 0; k < 3; ++k) {
+            linear(k) -= other.linear(k);
+            angular(k) -= other.angular(k);
+        }
         return self();
     }
     friend Derived operator+(Derived a, const Derived& b) noexcept { return a += b; }
     friend Derived operator-(Derived a, const Derived& b) noexcept { return a -= b; }
-    friend Derived operator*(const Scalar& s, const Derived& a) noexcept { return make(s * a.linear, s * a.angular); }
-    Derived operator-() const noexcept { return make(-linear, -angular); }
+    friend Derived operator*(const Scalar& s, Derived a) noexcept
+    {
+        for (int k = 0; k < 3; ++k) {
+            a.linear(k) *= s;
+            a.angular(k) *= s;
+        }
+        return a;
+    }
+    Derived operator-() const noexcept { return Scalar(-1) * static_cast<const Derived&>(*this); }
 
-    static Derived make(const Vector3<Scalar>& linear_, const Vector3<Scalar>& angular_) noexcept
+    template <typename DerivedLinear, typename DerivedAngular>
+    static Derived make(const Eigen::MatrixBase<DerivedLinear>& linear_, const Eigen::MatrixBase<DerivedAngular>& angular_) noexcept
     {
         Derived result;
-        result.linear = linear_;
-        result.angular = angular_;
+        for (int k = 0; k < 3; ++k) {
+            result.linear(k) = linear_(k);
+            result.angular(k) = angular_(k);
+        }
         return result;
     }
 
@@ -86,7 +120,12 @@ template <typename Scalar> struct Motion : detail::SpatialVectorBase<Motion<Scal
     template <typename Derived> Motion at_point(const Eigen::MatrixBase<Derived>& r) const noexcept
     {
         EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
-        return Motion::make(this->linear + this->angular.cross(r), this->angular);
+        const Vector3<Scalar> moment = detail::cross(this->angular, r);
+        Motion result = *this;
+        for (int k = 0; k < 3; ++k) {
+            result.linear(k) += moment(k);
+        }
+        return result;
     }
     /// Power of `force` on this motion, f . v + t . w (both about the same reference point).
     template <typename ForceType> Scalar dot(const ForceType& force) const noexcept
@@ -102,7 +141,12 @@ template <typename Scalar> struct Force : detail::SpatialVectorBase<Force<Scalar
     template <typename Derived> Force shifted(const Eigen::MatrixBase<Derived>& r) const noexcept
     {
         EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
-        return Force::make(this->linear, this->angular + r.cross(this->linear));
+        const Vector3<Scalar> moment = detail::cross(r, this->linear);
+        Force result = *this;
+        for (int k = 0; k < 3; ++k) {
+            result.angular(k) += moment(k);
+        }
+        return result;
     }
 };
 
@@ -115,7 +159,7 @@ Vector3<typename DerivedR::Scalar> centripetal_acceleration(const Eigen::MatrixB
 {
     EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedR, 3);
     EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedOmega, 3);
-    return omega.cross(omega.cross(r));
+    return detail::cross(omega, detail::cross(omega, r));
 }
 
 }  // namespace coopdyn

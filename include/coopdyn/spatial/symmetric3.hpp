@@ -33,7 +33,9 @@ public:
     template <typename Derived> explicit Symmetric3(const Eigen::MatrixBase<Derived>& matrix)
         : xx(matrix(0, 0)), yx(matrix(1, 0)), zx(matrix(2, 0)), yy(matrix(1, 1)), zy(matrix(2, 1)), zz(matrix(2, 2))
     {
-        EIGEN_STATIC_ASSERT_MATRIX_SPECIFIC_SIZE(Derived, 3, 3);
+        static_assert(detail::sizes_agree(Derived::RowsAtCompileTime, 3) && detail::sizes_agree(Derived::ColsAtCompileTime, 3),
+                      "a Symmetric3 is built from a 3x3 matrix");
+        COOPDYN_ASSERT(matrix.rows() == 3 && matrix.cols() == 3, "a Symmetric3 is built from a 3x3 matrix");
     }
 
     static Symmetric3 Zero() { return Symmetric3(); }
