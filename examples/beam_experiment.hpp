@@ -349,7 +349,7 @@ private:
 
 /// Runs one experiment on `model` (built from `scenario`): simulation, sensor model,
 /// identification from the logged (measured) wrench and displacement, and the identified
-/// model's predicted displacement. Throws coopdyn::InvalidModel if the identification fails.
+/// model's predicted displacement. Throws coopdyn::InvalidArgument if the identification fails.
 template <typename ModelType>
 ExperimentResult run_experiment(const Scenario& scenario, const ModelType& model, const ExperimentSpec& spec,
                                 const RunOptions& options, Progress& progress, unsigned long long seed_offset)

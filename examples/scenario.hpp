@@ -304,46 +304,34 @@ public:
         return result;
     }
 
-    /// Runs a coopdyn validation and turns its InvalidModel, "coopdyn: <body>: '<parameter>'
-    /// <problem>", into a ScenarioError at the JSON path of that parameter. The file's field names
-    /// are coopdyn's parameter names, so the mapping is mechanical: body "object" -> object.<p>,
-    /// "arm i" -> arms[i].end_effector.<p> (arms[i].<p> for grasp_body.*, and
-    /// load_distribution.<p>[i] for the weights), "load distribution" -> load_distribution.<p>,
-    /// "model" -> <p>.
+    /// Runs a coopdyn validation and turns its coopdyn::Error into a ScenarioError at the JSON
+    /// path of the refused parameter, read from the error's fields. The file's field names are
+    /// coopdyn's parameter names, so the mapping is mechanical: component "object" ->
+    /// object.<p>; an arm's parameter -> arms[i].end_effector.<p> (arms[i].<p> for grasp_body.*,
+    /// load_distribution.<p>[i] for the weights); "load distribution" -> load_distribution.<p>;
+    /// anything else (the model's own parameters) -> <p>.
     template <typename Check> void physical(Check&& check) const
     {
         try {
             check();
-        } catch (const coopdyn::InvalidModel& error) {
-            const std::string message = error.what();
-            const std::string lead = "coopdyn: ";
-            const auto body_end = message.find(": '", lead.size());
-            const auto close = body_end == std::string::npos ? std::string::npos : message.find('\'', body_end + 3);
-            if (message.compare(0, lead.size(), lead) != 0 || close == std::string::npos) {
-                fail("", message);
-            }
-            const std::string body = message.substr(lead.size(), body_end - lead.size());
-            const std::string parameter = message.substr(body_end + 3, close - body_end - 3);
-            std::string problem = message.substr(close + 1);
-            if (!problem.empty() && problem.front() == ' ') {
-                problem.erase(0, 1);
-            }
+        } catch (const coopdyn::Error& error) {
+            const std::string& parameter = error.parameter();
             std::string path = parameter;
-            if (body == "object") {
-                path = join_path("object", parameter);
-            } else if (body == "load distribution") {
-                path = join_path("load_distribution", parameter);
-            } else if (body.compare(0, 4, "arm ") == 0) {
-                const std::string arm = "arms[" + body.substr(4) + "]";
-                if (parameter == "mass_weights" || parameter == "inertia_weights") {
-                    path = "load_distribution." + parameter + "[" + body.substr(4) + "]";
+            if (error.has_arm()) {
+                const std::string index = std::to_string(error.arm());
+                if (error.component() == "load distribution") {
+                    path = "load_distribution." + parameter + "[" + index + "]";
                 } else if (parameter.compare(0, 10, "grasp_body") == 0) {
-                    path = join_path(arm, parameter);
+                    path = join_path("arms[" + index + "]", parameter);
                 } else {
-                    path = join_path(arm + ".end_effector", parameter);
+                    path = join_path("arms[" + index + "].end_effector", parameter);
                 }
+            } else if (error.component() == "object") {
+                path = join_path("object", parameter);
+            } else if (error.component() == "load distribution") {
+                path = join_path("load_distribution", parameter);
             }
-            fail(path, problem);
+            fail(path, error.problem());
         }
     }
 

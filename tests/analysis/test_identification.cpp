@@ -391,7 +391,7 @@ TEST(Identification, DiagonalSubsetOfAxes)
     try {
         (void)coopdyn::identify_diagonal_impedance(displacement, wrench, kPeriod);
         ADD_FAILURE() << "unexcited axis accepted";
-    } catch (const coopdyn::InvalidModel& error) {
+    } catch (const coopdyn::InvalidArgument& error) {
         std::printf("[subset] without mask: %s\n", error.what());
         EXPECT_NE(std::string(error.what()).find("axis 1 (translation y)"), std::string::npos) << error.what();
         EXPECT_NE(std::string(error.what()).find("wrench row 1"), std::string::npos) << error.what();
@@ -467,8 +467,8 @@ TEST(Identification, BadInputThrowsWithParameterName)
     expect_error(error_of([&] { (void)identify_diagonal_impedance(six, five, kPeriod); }), "'wrench' must be 6 x N");
     expect_error(error_of([&] { (void)identify_diagonal_impedance(six, short_six, kPeriod); }), "as many samples");
 
-    // Every failure is a coopdyn::InvalidModel (a std::invalid_argument).
-    EXPECT_THROW((void)identify_impedance(p.head(5), f.head(5), kPeriod), coopdyn::InvalidModel);
+    // Every failure is a coopdyn::InvalidArgument (a coopdyn::Error, a std::invalid_argument).
+    EXPECT_THROW((void)identify_impedance(p.head(5), f.head(5), kPeriod), coopdyn::InvalidArgument);
 
     // simulate_impedance validates too.
     expect_error(error_of([&] { (void)coopdyn::simulate_impedance({0.0, 1.0, 1.0}, 0.0, 0.0, f, kPeriod); }),

@@ -343,7 +343,7 @@ Verdict expect_unachievable(const ModelX& model, const coopdyn::Data<ModelX>& da
     // And the gains are the closest non-negative ones (Kuhn-Tucker conditions).
     const double violation = optimality_violation(r, result, target);
     EXPECT_LT(violation, 1e-12) << what;
-    EXPECT_THROW(coopdyn::with_stiffness(model, result), coopdyn::InvalidModel) << what;
+    EXPECT_THROW(coopdyn::with_stiffness(model, result), coopdyn::InvalidArgument) << what;
     std::printf("[unachievable: %s] achievable = %d, relative residual %.3e, KKT violation %.1e\n", what,
                 result.achievable ? 1 : 0, result.relative_residual, violation);
     return {result.achievable, result.relative_residual};
@@ -410,9 +410,9 @@ TEST(ImpedanceSynthesis, InvalidInputsThrow)
     coopdyn::grasp_kinematics(model, data, coopdyn::RigidBodyState<double>{});
     Matrix6d not_finite = Matrix6d::Identity();
     not_finite(2, 3) = std::nan("");
-    EXPECT_THROW(coopdyn::synthesize_stiffness(model, data, not_finite), coopdyn::InvalidModel);
-    EXPECT_THROW(coopdyn::synthesize_gains(MatrixXd::Zero(2, 3), Matrix6d::Identity()), coopdyn::InvalidModel);
-    EXPECT_THROW(coopdyn::synthesize_gains(MatrixXd::Zero(3, 2), Matrix6d::Identity(), 0.0), coopdyn::InvalidModel);
+    EXPECT_THROW(coopdyn::synthesize_stiffness(model, data, not_finite), coopdyn::InvalidArgument);
+    EXPECT_THROW(coopdyn::synthesize_gains(MatrixXd::Zero(2, 3), Matrix6d::Identity()), coopdyn::InvalidArgument);
+    EXPECT_THROW(coopdyn::synthesize_gains(MatrixXd::Zero(3, 2), Matrix6d::Identity(), 0.0), coopdyn::InvalidArgument);
     // Gains for another number of arms are refused.
     const ModelX other = random_model<ModelX>(2, 52);
     coopdyn::Data<ModelX> other_data(other);
@@ -420,7 +420,7 @@ TEST(ImpedanceSynthesis, InvalidInputsThrow)
     const Matrix6d other_target = coopdyn::apparent_impedance(other, other_data).stiffness;
     const auto two_arm = coopdyn::synthesize_stiffness(other, other_data, other_target);
     ASSERT_TRUE(two_arm.achievable);
-    EXPECT_THROW(coopdyn::with_stiffness(model, two_arm), coopdyn::InvalidModel);
+    EXPECT_THROW(coopdyn::with_stiffness(model, two_arm), coopdyn::InvalidArgument);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -542,13 +542,13 @@ TEST(ClassicalDamping, DiagonalSystemsAndEdgeCases)
     Matrix6d not_symmetric = Matrix6d(masses.asDiagonal());
     not_symmetric(0, 1) = 1.0;
     EXPECT_THROW(coopdyn::classical_damping(not_symmetric, Matrix6d(stiffnesses.asDiagonal()), zeta),
-                 coopdyn::InvalidModel);
+                 coopdyn::InvalidArgument);
     Vector6d indefinite = stiffnesses;
     indefinite(2) = -1.0;
     EXPECT_THROW(coopdyn::classical_damping(Matrix6d(masses.asDiagonal()), Matrix6d(indefinite.asDiagonal()), zeta),
-                 coopdyn::InvalidModel);
+                 coopdyn::InvalidArgument);
     EXPECT_THROW(coopdyn::classical_damping(Matrix6d(masses.asDiagonal()), Matrix6d(stiffnesses.asDiagonal()), -0.1),
-                 coopdyn::InvalidModel);
+                 coopdyn::InvalidArgument);
 }
 
 TEST(ClassicalDamping, FedToSynthesisReachableOnlyWhenTheStructureAllowsIt)
@@ -575,7 +575,7 @@ TEST(ClassicalDamping, FedToSynthesisReachableOnlyWhenTheStructureAllowsIt)
     const auto beam_damping = coopdyn::synthesize_damping(model, data, beam_classical);
     EXPECT_FALSE(beam_damping.achievable);
     EXPECT_GT(beam_damping.relative_residual, 1e-3);
-    EXPECT_THROW(coopdyn::with_damping(model, beam_damping), coopdyn::InvalidModel);
+    EXPECT_THROW(coopdyn::with_damping(model, beam_damping), coopdyn::InvalidArgument);
 
     // Built so that M = c K (two identical arms at (+-L, 0, 0), object inertia chosen to match):
     // then classical D = 2 zeta sqrt(c) K is reachable, d_i = 2 zeta sqrt(c) k, delta_i = 2 zeta

@@ -34,6 +34,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <algorithm>
 #include <vector>
 
@@ -210,8 +212,11 @@ TEST(InternalWrenches, MatchLiteralEquation53AndKktForTwoToSixArms)
                 worst_literal = std::max(worst_literal, error_literal);
                 worst_kkt = std::max(worst_kkt, error_kkt);
                 if (inertias.block_diagonal) {
-                    const VectorXd block = coopdyn::internal_wrenches_block_diagonal(
-                        inertias.masses, inertias.rotational, r, omega, h_motion);
+                    std::vector<coopdyn::CentralInertia<double>> central;
+                    for (Index i = 0; i < arms; ++i) {
+                        central.emplace_back(inertias.masses(i), Matrix3d(inertias.rotational.block(0, 3 * i, 3, 3)));
+                    }
+                    const VectorXd block = coopdyn::internal_wrenches(central, r, omega, h_motion);
                     const double error_block = relative_error(block, literal);
                     EXPECT_LT(error_block, 1e-12) << "N = " << arms << ", trial " << trial;
                     worst_block_kernel = std::max(worst_block_kernel, error_block);
@@ -777,9 +782,12 @@ TEST(NoAllocation, FixedSizeKernels)
     Eigen::Matrix<double, 12, 1> internal = Eigen::Matrix<double, 12, 1>::Zero();
     Eigen::Matrix<double, 12, 1> block = Eigen::Matrix<double, 12, 1>::Zero();
     Eigen::Matrix<double, 12, 1> external = Eigen::Matrix<double, 12, 1>::Zero();
+    const std::array<coopdyn::CentralInertia<double>, 2> central{
+        coopdyn::CentralInertia<double>(masses(0), Matrix3d(rotational.block<3, 3>(0, 0))),
+        coopdyn::CentralInertia<double>(masses(1), Matrix3d(rotational.block<3, 3>(0, 3)))};
     const Allocations counts = count_allocations([&] {
         internal = coopdyn::internal_wrenches(stack, r, omega, h_motion);
-        block = coopdyn::internal_wrenches_block_diagonal(masses, rotational, r, omega, h_motion);
+        block = coopdyn::internal_wrenches(central, r, omega, h_motion);
         external = coopdyn::external_wrenches(stack, r, omega, h_motion, h_end_effectors);
     });
     EXPECT_EQ(counts.operator_new, 0);

@@ -323,7 +323,7 @@ TEST(LoadDistribution, EqualsMinusGeneralizedInverseTimesWrenchAndReproducesTheO
 
             // The noexcept kernel writes the same into caller storage.
             VectorXd written = VectorXd::Zero(6 * arms);
-            EXPECT_TRUE(coopdyn::distribute_load(r, weights.mass, weights.inertia, object_wrench, written));
+            EXPECT_TRUE(coopdyn::try_distribute_load(r, weights.mass, weights.inertia, object_wrench, written));
             EXPECT_EQ(written, desired);
         }
     }
@@ -499,7 +499,7 @@ TEST(LoadDistributionValidation, KernelsRefuseDegenerateGraspsAndNonPositiveMass
         expect_invalid_model([&] { (void)coopdyn::load_distribution(c.r, mass, zero, object_wrench); },
                              {"load distribution", "inertia_weights"}, c.name);
         VectorXd untouched = VectorXd::Constant(6 * arms, 7.0);
-        EXPECT_FALSE(coopdyn::distribute_load(c.r, mass, zero, object_wrench, untouched)) << c.name;
+        EXPECT_FALSE(coopdyn::try_distribute_load(c.r, mass, zero, object_wrench, untouched)) << c.name;
         EXPECT_TRUE((untouched.array() == 7.0).all()) << c.name;
         // A positive definite rotational weight of one arm makes the same grasp valid.
         MatrixXd one_rotational = zero;
@@ -520,7 +520,7 @@ TEST(LoadDistributionValidation, KernelsRefuseDegenerateGraspsAndNonPositiveMass
         expect_invalid_model([&] { (void)coopdyn::load_distribution(r, mass, weights.inertia, object_wrench); },
                              {"arm 1", "mass_weights", "positive"}, "load_distribution, m*_1 <= 0");
         VectorXd untouched = VectorXd::Constant(18, 7.0);
-        EXPECT_FALSE(coopdyn::distribute_load(r, mass, weights.inertia, object_wrench, untouched));
+        EXPECT_FALSE(coopdyn::try_distribute_load(r, mass, weights.inertia, object_wrench, untouched));
         EXPECT_TRUE((untouched.array() == 7.0).all());
     }
     // Wrong sizes.
@@ -571,7 +571,7 @@ TEST(LoadDistributionValidation, EveryDegenerateGraspIsRefusedAndNearlyDegenerat
         const Weights weights{random_vector(arms, rng, 0.5, 5.0), MatrixXd::Zero(3, 3 * arms)};
         VectorXd out(6 * arms);
         accepted_degenerate +=
-            coopdyn::distribute_load(r, weights.mass, weights.inertia, random_vector(6, rng), out) ? 1 : 0;
+            coopdyn::try_distribute_load(r, weights.mass, weights.inertia, random_vector(6, rng), out) ? 1 : 0;
 
         // One point moved 1 mm off the line (perpendicular), three or more arms.
         if (arms >= 3) {

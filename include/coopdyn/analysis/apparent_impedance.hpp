@@ -17,9 +17,10 @@
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/dynamics/cooperative_dynamics.hpp"
+#include "coopdyn/dynamics/energy.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
 #include "coopdyn/model/grasp.hpp"
-#include "coopdyn/spatial/skew.hpp"
+#include "coopdyn/spatial/inertia.hpp"
 
 #include <Eigen/Cholesky>
 
@@ -33,34 +34,15 @@ template <typename Scalar> struct ApparentImpedance {
     Matrix6<Scalar> stiffness = Matrix6<Scalar>::Zero();  ///< K, exact linearisation (E3)
 };
 
-/// \brief Congruence G_i X G_i^T of a per-arm 6x6 matrix with the arm's grasp map: the arm's
-/// inertia, damping or stiffness as seen at the object's centre of mass. With S = S(r_i),
-/// G_i X G_i^T = [[X11, X11 S^T + X12], [S X11 + X21, S X11 S^T + S X12 + X21 S^T + X22]].
-template <typename DerivedR, typename DerivedX>
-Matrix6<typename DerivedX::Scalar> grasp_congruence(const Eigen::MatrixBase<DerivedR>& r_i,
-                                                    const Eigen::MatrixBase<DerivedX>& matrix) noexcept
-{
-    using Scalar = typename DerivedX::Scalar;
-    const Matrix3<Scalar> s = skew(r_i);
-    const Matrix3<Scalar> top_left = matrix.template topLeftCorner<3, 3>();
-    const Matrix3<Scalar> s_top_left = s * top_left;
-    Matrix6<Scalar> result;
-    result.template topLeftCorner<3, 3>() = top_left;
-    result.template topRightCorner<3, 3>() = top_left * s.transpose() + matrix.template topRightCorner<3, 3>();
-    result.template bottomLeftCorner<3, 3>() = s_top_left + matrix.template bottomLeftCorner<3, 3>();
-    result.template bottomRightCorner<3, 3>() = s_top_left * s.transpose() +
-                                                s * matrix.template topRightCorner<3, 3>() +
-                                                matrix.template bottomLeftCorner<3, 3>() * s.transpose() +
-                                                matrix.template bottomRightCorner<3, 3>();
-    return result;
-}
-
-/// \brief Apparent impedance (31), (32) and exact K of the cooperative system.
+/// \brief Apparent impedance (31), (32) and exact K of the cooperative system, from dense
+/// matrices. Each sum of congruences G_i X_i G_i^T is the parallel-axis shift of the spatial
+/// layer (ArticulatedInertia::add_shifted), so the formula exists once.
 /// \param object_inertia M_o, 6x6 in {w}.
 /// \param ee_inertia 6 x 6N, the M_i side by side.
-/// \param ee_damping 6 x 6N, the D_i = diag(d_i I3, delta_i I3) side by side (any 6x6 accepted).
+/// \param ee_damping 6 x 6N, the D_i = diag(d_i I3, delta_i I3) side by side.
 /// \param ee_stiffness 6 x 6N, diag(k_i I3, kappa_i I3) side by side.
 /// \param r 3 x N grasp offsets in {w}.
+/// Every 6x6 block is symmetric (only its lower triangle is read).
 template <typename DerivedObject, typename DerivedInertia, typename DerivedDamping, typename DerivedStiffness,
           typename DerivedR>
 ApparentImpedance<typename DerivedObject::Scalar>
@@ -70,17 +52,23 @@ apparent_impedance(const Eigen::MatrixBase<DerivedObject>& object_inertia,
                    const Eigen::MatrixBase<DerivedStiffness>& ee_stiffness, const Eigen::MatrixBase<DerivedR>& r) noexcept
 {
     using Scalar = typename DerivedObject::Scalar;
+    using Inertia = ArticulatedInertia<Scalar>;
     const Index arms = r.cols();
     COOPDYN_ASSERT(ee_inertia.cols() == 6 * arms && ee_damping.cols() == 6 * arms && ee_stiffness.cols() == 6 * arms,
                    "per-arm matrices must be 6 x 6N");
-    ApparentImpedance<Scalar> result;
-    result.inertia = object_inertia;
+    Inertia inertia(object_inertia.template topLeftCorner<6, 6>());
+    Inertia damping;
+    Inertia stiffness;
     for (Index i = 0; i < arms; ++i) {
         const Vector3<Scalar> r_i = r.col(i).template head<3>();
-        result.inertia += grasp_congruence(r_i, ee_inertia.template block<6, 6>(0, 6 * i));
-        result.damping += grasp_congruence(r_i, ee_damping.template block<6, 6>(0, 6 * i));
-        result.stiffness += grasp_congruence(r_i, ee_stiffness.template block<6, 6>(0, 6 * i));
+        inertia.add_shifted(Inertia(ee_inertia.template block<6, 6>(0, 6 * i)), r_i);
+        damping.add_shifted(Inertia(ee_damping.template block<6, 6>(0, 6 * i)), r_i);
+        stiffness.add_shifted(Inertia(ee_stiffness.template block<6, 6>(0, 6 * i)), r_i);
     }
+    ApparentImpedance<Scalar> result;
+    result.inertia = inertia.matrix();
+    result.damping = damping.matrix();
+    result.stiffness = stiffness.matrix();
     return result;
 }
 
@@ -96,22 +84,23 @@ ApparentImpedance<typename ModelType::Scalar> apparent_impedance(const ModelType
                                                                  const Data<ModelType>& data) noexcept
 {
     using Scalar = typename ModelType::Scalar;
-    static_assert(ModelType::EndEffectorModel::has_potential_energy,
-                  "the apparent impedance needs impedance end-effectors (damping and stiffness gains)");
-    ApparentImpedance<Scalar> result;
-    result.inertia = model.object().spatial_inertia(data.object_rotation);
+    static_assert(is_impedance_end_effector_v<typename ModelType::EndEffectorModel>,
+                  "the apparent impedance needs impedance end-effectors (damping() and stiffness())");
+    // M_o + sum G_i M_i G_i^T (31), sum G_i D_i G_i^T (32), sum G_i diag(k_i I3, kappa_i I3) G_i^T (E3).
+    SpatialInertia<Scalar> inertia = model.object().inertia(data.object_rotation);
+    SpatialInertia<Scalar> damping;
+    SpatialInertia<Scalar> stiffness;
     for (Index i = 0; i < model.arms(); ++i) {
         const auto& arm = model.end_effector(i);
         const Vector3<Scalar> r_i = data.grasp_offsets.col(i);
-        Vector6<Scalar> damping;
-        damping << Vector3<Scalar>::Constant(arm.translational_damping), Vector3<Scalar>::Constant(arm.rotational_damping);
-        Vector6<Scalar> stiffness;
-        stiffness << Vector3<Scalar>::Constant(arm.translational_stiffness),
-            Vector3<Scalar>::Constant(arm.rotational_stiffness);
-        result.inertia += grasp_congruence(r_i, arm.inertia());
-        result.damping += grasp_congruence(r_i, Matrix6<Scalar>(damping.asDiagonal()));
-        result.stiffness += grasp_congruence(r_i, Matrix6<Scalar>(stiffness.asDiagonal()));
+        inertia.add_shifted(arm.inertia(), r_i);
+        damping.add_shifted(arm.damping(), r_i);
+        stiffness.add_shifted(arm.stiffness(), r_i);
     }
+    ApparentImpedance<Scalar> result;
+    result.inertia = inertia.matrix();
+    result.damping = damping.matrix();
+    result.stiffness = stiffness.matrix();
     return result;
 }
 
@@ -142,9 +131,8 @@ Vector6<typename ModelType::Scalar> apparent_coriolis_wrench(const ModelType& mo
     Vector6<Scalar> result = model.object().coriolis_wrench(data.object_rotational_inertia, twist);
     for (Index i = 0; i < model.arms(); ++i) {
         const Vector3<Scalar> r_i = data.grasp_offsets.col(i);
-        const Vector6<Scalar> inertial = model.end_effector_inertias().template block<6, 3>(0, 6 * i) *
-                                         centripetal_acceleration(r_i, omega);
-        result += grasp_map_wrench(r_i, inertial);
+        // G_i M_i b_i, b_i = [S(w_o)^2 r_i; 0]
+        result += model.end_effector_inertia(i).apply_translation(centripetal_acceleration(r_i, omega)).shifted(r_i).vector();
     }
     return result;
 }
@@ -183,11 +171,7 @@ typename ModelType::Scalar storage_function(
     using Scalar = typename ModelType::Scalar;
     const Matrix6<Scalar> inertia = apparent_impedance(model, data).inertia;
     const auto& twist = data.object_state.twist;
-    Scalar storage = Scalar(0.5) * twist.dot(inertia * twist);
-    for (Index i = 0; i < model.arms(); ++i) {
-        storage += model.end_effector(i).potential_energy(data.end_effector_pose(i), setpoints.pose(i));
-    }
-    return storage;
+    return Scalar(0.5) * twist.dot(inertia * twist) + spring_potential_energy(model, data, setpoints);
 }
 
 }  // namespace coopdyn

@@ -194,9 +194,7 @@ inline Eigen::Matrix<double, 21, 1> symmetric_entries(const Matrix6<double>& mat
 /// unit translational gain at grasp offset r (docs/analysis.md).
 inline Matrix6<double> unit_translational_contribution(const Vector3<double>& r_i)
 {
-    Matrix6<double> unit = Matrix6<double>::Zero();
-    unit.topLeftCorner<3, 3>().setIdentity();
-    return grasp_congruence(r_i, unit);
+    return CentralInertia<double>(1.0, Symmetric3<double>::Zero()).shifted(r_i).matrix();
 }
 
 /// R = G_i diag(0, I3) G_i^T = diag(0, I3): the object matrix of a unit rotational gain.
@@ -209,7 +207,7 @@ inline Matrix6<double> unit_rotational_contribution()
 
 template <typename ModelType> void require_impedance_model()
 {
-    static_assert(ModelType::EndEffectorModel::has_potential_energy,
+    static_assert(is_impedance_end_effector_v<typename ModelType::EndEffectorModel>,
                   "impedance synthesis needs impedance end-effectors (scalar damping and stiffness gains)");
 }
 

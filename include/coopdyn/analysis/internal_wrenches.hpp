@@ -91,8 +91,9 @@ internal_wrenches(const EndEffectorInertias& ee_inertias, const Eigen::MatrixBas
                   const Eigen::MatrixBase<DerivedOmega>& omega_o, const Eigen::MatrixBase<DerivedMotion>& h_motion)
 {
     using Result = EndEffectorVector<typename DerivedMotion::Scalar, detail::internal_arms<DerivedR, DerivedMotion>()>;
-    Result rigid_accelerations(h_motion.size());
-    Result internal(h_motion.size());
+    // Zero-initialised although every entry is written: GCC 12 cannot see that through the solve.
+    Result rigid_accelerations = Result::Zero(h_motion.size());
+    Result internal = Result::Zero(h_motion.size());
     internal_wrenches(ee_inertias, r, omega_o, h_motion, rigid_accelerations, internal);
     return internal;
 }

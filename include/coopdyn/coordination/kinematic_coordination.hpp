@@ -27,12 +27,12 @@ void coordinate_setpoints(const ModelType& model, const RigidBodyState<typename 
     const Matrix3<Scalar> rotation = desired_object.pose.orientation.toRotationMatrix();
     const Vector3<Scalar> omega = desired_object.twist.template tail<3>();
     for (Index i = 0; i < model.arms(); ++i) {
-        const Vector3<Scalar> r_i = rotation * model.grasp_offsets_body().col(i);
-        setpoints.positions.col(i) = desired_object.pose.position + r_i;
-        setpoints.orientations.col(i) = (desired_object.pose.orientation * model.grasp_orientation_body(i)).coeffs();
-        setpoints.twist(i) = grasp_map_twist(r_i, desired_object.twist);
-        Vector6<Scalar> acceleration = grasp_map_twist(r_i, desired_object_acceleration);
-        acceleration.template head<3>() += centripetal_acceleration(r_i, omega);
+        const GraspPoint<Scalar> point = grasp_point(model, i, rotation, desired_object);
+        setpoints.set_pose(i, point.pose);
+        setpoints.twist(i) = point.twist;
+        // xdd_i^d = G_i^T xdd_o^d + b_i(w_o^d) (27)
+        Vector6<Scalar> acceleration = grasp_map_twist(point.offset, desired_object_acceleration);
+        acceleration.template head<3>() += centripetal_acceleration(point.offset, omega);
         setpoints.acceleration(i) = acceleration;
     }
 }
@@ -46,12 +46,10 @@ Vector6<typename ModelType::Scalar> tracking_object_wrench(
 {
     using Scalar = typename ModelType::Scalar;
     const auto& object = model.object();
-    const Matrix3<Scalar> rotational_inertia =
-        object.rotational_inertia(desired_object.pose.orientation.toRotationMatrix());
-    Vector6<Scalar> result;
-    result.template head<3>() = object.mass * desired_object_acceleration.template head<3>();
-    result.template tail<3>() = rotational_inertia * desired_object_acceleration.template tail<3>();
-    return result + object.coriolis_wrench(rotational_inertia, desired_object.twist) +
+    const Matrix3<Scalar> rotation = desired_object.pose.orientation.toRotationMatrix();
+    const Vector6<Scalar> inertial =
+        (object.inertia(rotation) * Motion<Scalar>::from(desired_object_acceleration)).vector();
+    return inertial + object.coriolis_wrench(object.rotational_inertia(rotation), desired_object.twist) +
            object.gravity_wrench(model.gravity());
 }
 

@@ -15,12 +15,21 @@
 /// G G+_M = I6 for every grasp, and distributes the wrench as the rigid motion of bodies with
 /// those inertias would: with the end-effector inertias as weights (m*_i = m_i, J*_i = J_i) it
 /// produces no internal wrench (docs/analysis.md).
+///
+/// Error policy, said in the names (docs/conventions.md, "Errors"):
+/// - `weighted_grasp_inverse`, `load_distribution`: validate their arguments and throw
+///   InvalidModel naming the weight and the arm;
+/// - `try_distribute_load`: per tick, noexcept, returns false (output untouched) on degenerate
+///   weights;
+/// - `LoadDistribution::distribute`: per tick, noexcept, weights validated once at construction,
+///   so it only asserts.
 #pragma once
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/detail/fixed_cholesky.hpp"
 #include "coopdyn/detail/validation.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
+#include "coopdyn/spatial/inertia.hpp"
 #include "coopdyn/spatial/skew.hpp"
 
 #include <algorithm>
@@ -101,11 +110,16 @@ template <typename Scalar> struct WeightedGrasp {
             centroid += mass_weights(i) * r.col(i).template head<3>();
         }
         centroid /= total_mass_weight;
-        Matrix3<Scalar> rotational = Matrix3<Scalar>::Zero();
+        // J*_o is the rotational inertia, about the centroid, of bodies with the weights as inertias
+        // (25): the composite of diag(m*_i I3, J*_i) shifted to the centred offsets r'_i.
+        SpatialInertia<Scalar> weights_about_centroid;
         for (Index i = 0; i < arms; ++i) {
             const Vector3<Scalar> centred = r.col(i).template head<3>() - centroid;
-            rotational += inertia_weights.template block<3, 3>(0, 3 * i) + mass_weights(i) * skew_gram(centred);
+            weights_about_centroid.add_shifted(
+                CentralInertia<Scalar>(mass_weights(i), Matrix3<Scalar>(inertia_weights.template block<3, 3>(0, 3 * i))),
+                centred);
         }
+        const Matrix3<Scalar> rotational = weights_about_centroid.rotational().matrix();
         const bool factored = rotational_factor.compute(rotational);
         valid = positive_masses && factored &&
                 pivot_ratio(rotational) > Scalar(load_distribution_singularity_tolerance<Scalar>());
@@ -197,7 +211,7 @@ weighted_grasp_inverse(const Eigen::MatrixBase<DerivedR>& r, const Eigen::Matrix
 /// Model-level user validates the weights once instead (LoadDistribution).
 template <typename DerivedR, typename DerivedMass, typename DerivedInertia, typename DerivedWrench,
           typename DerivedOut>
-bool distribute_load(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedMass>& mass_weights,
+bool try_distribute_load(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedMass>& mass_weights,
                      const Eigen::MatrixBase<DerivedInertia>& inertia_weights,
                      const Eigen::MatrixBase<DerivedWrench>& object_wrench,
                      const Eigen::MatrixBase<DerivedOut>& desired_wrenches_out) noexcept
@@ -239,7 +253,7 @@ load_distribution(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<
     }
     Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 1> result =
         Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 1>::Zero(6 * r.cols());
-    if (!distribute_load(r, mass_weights, inertia_weights, object_wrench, result)) {
+    if (!try_distribute_load(r, mass_weights, inertia_weights, object_wrench, result)) {
         detail::fail_degenerate_grasp();
     }
     return result;
@@ -292,7 +306,7 @@ public:
         // orientation lambda_min(J*_o) >= max(lambda_min(spread), lambda_min(sum J*_i)) and
         // lambda_max(J*_o) <= lambda_max(spread) + lambda_max(sum J*_i), so requiring the first
         // above the tolerance times the second keeps J*_o well conditioned in every orientation,
-        // and then the per-tick test of distribute_load (whose pivot ratio is never below
+        // and then the per-tick test of try_distribute_load (whose pivot ratio is never below
         // lambda_min / lambda_max, up to rounding) passes. Relative only: a common scale of all
         // weights changes nothing in (25).
         const Vector3<Scalar> centroid = model.grasp_offsets_body() * mass_weights_ / mass_weights_.sum();
@@ -324,7 +338,7 @@ public:
                     Setpoints<Scalar, Arms>& setpoints) const noexcept
     {
         const bool distributed =
-            distribute_load(data.grasp_offsets, mass_weights_, inertia_weights_, object_wrench, setpoints.wrenches);
+            try_distribute_load(data.grasp_offsets, mass_weights_, inertia_weights_, object_wrench, setpoints.wrenches);
         COOPDYN_ASSERT(distributed, "weights validated at construction cannot be degenerate");
         (void)distributed;
     }

@@ -25,12 +25,11 @@ void grasp_kinematics(const ModelType& model, Data<ModelType>& data,
     data.object_rotation = object_state.pose.orientation.toRotationMatrix();
     data.object_rotational_inertia = model.object().rotational_inertia(data.object_rotation);
     for (Index i = 0; i < model.arms(); ++i) {
-        const Vector3<Scalar> r_i = data.object_rotation * model.grasp_offsets_body().col(i);
-        data.grasp_offsets.col(i) = r_i;
-        data.end_effector_positions.col(i) = object_state.pose.position + r_i;
-        data.end_effector_orientations.col(i) =
-            (object_state.pose.orientation * model.grasp_orientation_body(i)).coeffs();
-        data.end_effector_twists.template segment<6>(6 * i) = grasp_map_twist(r_i, object_state.twist);
+        const GraspPoint<Scalar> point = grasp_point(model, i, data.object_rotation, object_state);
+        data.grasp_offsets.col(i) = point.offset;
+        data.end_effector_positions.col(i) = point.pose.position;
+        data.end_effector_orientations.col(i) = point.pose.orientation.coeffs();
+        data.end_effector_twists.template segment<6>(6 * i) = point.twist;
     }
 }
 

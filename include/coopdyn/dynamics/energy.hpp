@@ -6,34 +6,38 @@
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
+#include "coopdyn/spatial/inertia.hpp"
 
 namespace coopdyn {
+
+/// M_o = diag(m_o I3, J_o) at the configuration in `data` (J_o in {w} from grasp_kinematics).
+template <typename ModelType>
+CentralInertia<typename ModelType::Scalar> object_inertia(const ModelType& model, const Data<ModelType>& data) noexcept
+{
+    return CentralInertia<typename ModelType::Scalar>(model.object().mass, data.object_rotational_inertia);
+}
 
 /// \brief Kinetic energy 1/2 xdot_o^T M_o xdot_o + sum_i 1/2 xdot_i^T M_i xdot_i.
 template <typename ModelType>
 typename ModelType::Scalar kinetic_energy(const ModelType& model, const Data<ModelType>& data) noexcept
 {
     using Scalar = typename ModelType::Scalar;
-    const auto& twist = data.object_state.twist;
-    const Vector3<Scalar> omega = twist.template tail<3>();
-    Scalar energy = Scalar(0.5) * model.object().mass * twist.template head<3>().squaredNorm() +
-                    Scalar(0.5) * omega.dot(data.object_rotational_inertia * omega);
+    Scalar energy = object_inertia(model, data).kinetic_energy(Motion<Scalar>::from(data.object_state.twist));
     for (Index i = 0; i < model.arms(); ++i) {
-        const Vector6<Scalar> arm_twist = data.end_effector_twist(i);
-        energy += Scalar(0.5) *
-                  arm_twist.dot(model.end_effector_inertias().template block<6, 6>(0, 6 * i) * arm_twist);
+        energy += model.end_effector_inertia(i).kinetic_energy(Motion<Scalar>::from(data.end_effector_twist(i)));
     }
     return energy;
 }
 
-/// \brief Spring potential sum_i U_i of the end-effector stiffnesses (39), for the setpoints.
-/// Only for end-effector models whose stiffness has a potential (ImpedanceEndEffector).
+/// \brief Spring potential sum_i U_i of the end-effector stiffnesses (39), for the setpoints
+/// (the springs' potential of Lemma 1, docs/analysis.md). Only for impedance end-effectors
+/// (is_impedance_end_effector_v).
 template <typename ModelType>
 typename ModelType::Scalar spring_potential_energy(
     const ModelType& model, const Data<ModelType>& data,
     const Setpoints<typename ModelType::Scalar, ModelType::arms_at_compile_time>& setpoints) noexcept
 {
-    static_assert(ModelType::EndEffectorModel::has_potential_energy,
+    static_assert(is_impedance_end_effector_v<typename ModelType::EndEffectorModel>,
                   "this end-effector model's stiffness has no potential");
     using Scalar = typename ModelType::Scalar;
     Scalar energy(0);
@@ -56,29 +60,25 @@ template <typename ModelType>
 Vector3<typename ModelType::Scalar> linear_momentum(const ModelType& model, const Data<ModelType>& data) noexcept
 {
     using Scalar = typename ModelType::Scalar;
-    Vector3<Scalar> momentum = model.object().mass * data.object_state.twist.template head<3>();
+    Vector3<Scalar> momentum = (object_inertia(model, data) * Motion<Scalar>::from(data.object_state.twist)).linear;
     for (Index i = 0; i < model.arms(); ++i) {
-        momentum += model.end_effector_inertias().template block<3, 6>(0, 6 * i) * data.end_effector_twist(i);
+        momentum += (model.end_effector_inertia(i) * Motion<Scalar>::from(data.end_effector_twist(i))).linear;
     }
     return momentum;
 }
 
-/// \brief Total angular momentum about the world origin: for every body, p x (linear momentum)
-/// plus its angular momentum about its own reference point.
+/// \brief Total angular momentum about the world origin: for every body, its spatial momentum
+/// M xdot (about its reference point) carried to the origin, p x (linear) + angular.
 template <typename ModelType>
 Vector3<typename ModelType::Scalar> angular_momentum(const ModelType& model, const Data<ModelType>& data) noexcept
 {
     using Scalar = typename ModelType::Scalar;
-    const auto& state = data.object_state;
-    const Vector3<Scalar> omega = state.twist.template tail<3>();
-    Vector3<Scalar> momentum =
-        state.pose.position.cross(model.object().mass * state.twist.template head<3>()) +
-        data.object_rotational_inertia * omega;
+    const Force<Scalar> object_momentum =
+        object_inertia(model, data) * Motion<Scalar>::from(data.object_state.twist);
+    Vector3<Scalar> momentum = object_momentum.shifted(data.object_state.pose.position).angular;
     for (Index i = 0; i < model.arms(); ++i) {
-        const Vector6<Scalar> spatial_momentum =
-            model.end_effector_inertias().template block<6, 6>(0, 6 * i) * data.end_effector_twist(i);
-        momentum += Vector3<Scalar>(data.end_effector_positions.col(i)).cross(spatial_momentum.template head<3>()) +
-                    spatial_momentum.template tail<3>();
+        const Force<Scalar> arm_momentum = model.end_effector_inertia(i) * Motion<Scalar>::from(data.end_effector_twist(i));
+        momentum += arm_momentum.shifted(Vector3<Scalar>(data.end_effector_positions.col(i))).angular;
     }
     return momentum;
 }

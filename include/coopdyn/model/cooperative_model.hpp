@@ -13,6 +13,7 @@
 #include "coopdyn/model/impedance_end_effector.hpp"
 #include "coopdyn/model/rigid_object.hpp"
 #include "coopdyn/spatial/pose.hpp"
+#include "coopdyn/spatial/spatial_vector.hpp"
 
 #include <string>
 #include <utility>
@@ -142,6 +143,33 @@ private:
     PerArmMatrix3<Scalar, Arms> end_effector_rotational_inertias_;
     PerArmMatrix6<Scalar, Arms> end_effector_inertias_;
 };
+
+/// \brief Where grasp point i is on a rigidly held object: its offset r_i from the object's
+/// centre of mass, its pose and its twist, all in {w}.
+template <typename Scalar> struct GraspPoint {
+    Vector3<Scalar> offset;   ///< r_i = R(q_o) r_i_body
+    Pose<Scalar> pose;        ///< p_i = p_o + r_i, q_i = q_o (x) dq_i
+    Vector6<Scalar> twist;    ///< xdot_i = G_i^T xdot_o (10)
+};
+
+/// \brief Rigid-grasp forward kinematics of arm `arm` for an object state (docs/model.md, (10),
+/// (38)); `object_rotation` is R(q_o), passed in so that callers looping over the arms compute
+/// it once. The one implementation behind grasp_kinematics (actual state) and
+/// coordinate_setpoints (desired state). noexcept; allocation-free.
+template <typename ModelType>
+GraspPoint<typename ModelType::Scalar> grasp_point(const ModelType& model, Index arm,
+                                                   const Matrix3<typename ModelType::Scalar>& object_rotation,
+                                                   const RigidBodyState<typename ModelType::Scalar>& object) noexcept
+{
+    using Scalar = typename ModelType::Scalar;
+    COOPDYN_ASSERT(arm >= 0 && arm < model.arms(), "arm index out of range");
+    GraspPoint<Scalar> point;
+    point.offset = object_rotation * model.grasp_offsets_body().col(arm);
+    point.pose.position = object.pose.position + point.offset;
+    point.pose.orientation = object.pose.orientation * model.grasp_orientation_body(arm);
+    point.twist = Motion<Scalar>::from(object.twist).at_point(point.offset).vector();
+    return point;
+}
 
 /// \brief Per-tick inputs of the end-effector controllers: desired poses x_i^d, twists
 /// xdot_i^d, accelerations xdd_i^d and wrenches h_i^d (1). Sized once.

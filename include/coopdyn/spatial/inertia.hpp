@@ -186,12 +186,14 @@ public:
     void add_shifted(const SpatialInertia& other, const Eigen::MatrixBase<Derived>& r_in) noexcept
     {
         EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
+        // Copies, not references: other may be *this (M.add_shifted(M, r) = M + G M G^T).
         const Vector3<Scalar> r = r_in;
-        const Vector3<Scalar>& h = other.first_moment_;
-        mass_ += other.mass_;
-        first_moment_ += h + other.mass_ * r;
+        const Scalar m = other.mass_;
+        const Vector3<Scalar> h = other.first_moment_;
+        mass_ += m;
+        first_moment_ += h + m * r;
         rotational_ += other.rotational_;
-        rotational_.add_skew_square(other.mass_, r);
+        rotational_.add_skew_square(m, r);
         // S(h) S(r)^T + S(r) S(h)^T = 2 (h . r) I3 - h r^T - r h^T
         const Scalar twice_dot = Scalar(2) * h.dot(r);
         rotational_.xx += twice_dot - Scalar(2) * h(0) * r(0);
