@@ -56,6 +56,8 @@
 #include "coopdyn/analysis/apparent_impedance.hpp"
 #include "coopdyn/config.hpp"
 #include "coopdyn/detail/validation.hpp"
+#include "coopdyn/numerics/levenberg_marquardt.hpp"
+#include "coopdyn/numerics/matrix_exponential.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -164,40 +166,6 @@ inline int interpolation_points(ForceInterpolation interpolation) noexcept
     return 4;
 }
 
-/// exp(a) of a small square matrix: scaling and squaring with a Taylor series, truncated when
-/// the next term is below double rounding (the scaled norm is at most 1/2). Returns a matrix of
-/// NaN when a is not finite or exp(a) would overflow.
-inline Eigen::MatrixXd matrix_exponential(const Eigen::MatrixXd& a)
-{
-    const Eigen::Index size = a.rows();
-    const Eigen::MatrixXd failed = Eigen::MatrixXd::Constant(size, size, std::numeric_limits<double>::quiet_NaN());
-    const double norm = a.cwiseAbs().rowwise().sum().maxCoeff();
-    if (!std::isfinite(norm)) {
-        return failed;
-    }
-    int squarings = 0;
-    if (norm > 0.5) {
-        std::frexp(norm / 0.5, &squarings);  // norm / 2^squarings < 0.5
-    }
-    if (squarings > 1100) {
-        return failed;
-    }
-    const Eigen::MatrixXd scaled = a * std::ldexp(1.0, -squarings);
-    Eigen::MatrixXd term = Eigen::MatrixXd::Identity(size, size);
-    Eigen::MatrixXd result = term;
-    for (int order = 1; order <= 30; ++order) {
-        term = (term * scaled) / static_cast<double>(order);
-        result += term;
-        if (term.cwiseAbs().maxCoeff() <= 1e-18 * result.cwiseAbs().maxCoeff()) {
-            break;
-        }
-    }
-    for (int i = 0; i < squarings; ++i) {
-        result = (result * result).eval();
-    }
-    return result;
-}
-
 /// Exact discretisation, over one sample period, of the model x' = A x + B f (x = [p; v]) together
 /// with its sensitivities s_m, s_d, s_k (z = [x; s_m; s_d; s_k], 8 states) for a polynomial force
 /// interpolated through `points` samples. One step: z[n+1] = transition z[n] + input[v] f_window,
@@ -247,7 +215,7 @@ inline bool discretize_impedance(double mass, double damping, double stiffness, 
     for (Eigen::Index i = 0; i + 1 < points; ++i) {
         z(8 + i, 9 + i) = 1.0;
     }
-    const Eigen::MatrixXd exponential = matrix_exponential(z);
+    const Eigen::MatrixXd exponential = numerics::matrix_exponential(z);
     if (!exponential.allFinite()) {
         return false;
     }
@@ -657,87 +625,12 @@ inline ImpedanceFit identify_impedance_samples(const Eigen::VectorXd& position, 
     fit.equation_error_mean_squared_output_error =
         (fit.equation_error_start ? cost : std::numeric_limits<double>::infinity()) / static_cast<double>(samples);
 
-    // Levenberg-Marquardt with Marquardt's scaling diag(J^T J) and Nielsen's damping update.
-    const double tolerance = options.tolerance;
-    double damping_factor = 1e-3;
-    double growth = 2.0;
-    int iteration = 0;
-    bool converged = false;
-    const Eigen::Index n_parameters = parameters;
-    // The active block of the normal equations is copied element by element into dynamic-size
-    // objects, and the step is added index by index: expressions such as head(n) on the fixed
-    // 5-vectors with a run-time n make GCC 12 report false -Warray-bounds once inlined at -O2/-O3.
-    Eigen::MatrixXd h(n_parameters, n_parameters);
-    Eigen::VectorXd g(n_parameters);
-    Eigen::VectorXd active(n_parameters);
-    Eigen::VectorXd scale(n_parameters);
-    while (!converged && iteration < options.max_iterations) {
-        for (Eigen::Index i = 0; i < n_parameters; ++i) {
-            g(i) = gradient(i);
-            active(i) = theta(i);
-            for (Eigen::Index j = 0; j < n_parameters; ++j) {
-                h(i, j) = normal(i, j);
-            }
-        }
-        scale = h.diagonal();
-        const double largest = scale.maxCoeff();
-        if (cost == 0.0 || !(largest > 0.0)) {
-            converged = true;
-            break;
-        }
-        scale = scale.cwiseMax(std::numeric_limits<double>::epsilon() * largest);
-        // Cosine between the residual and each Jacobian column (scale-free gradient test).
-        const double cosine = (g.array().abs() / (scale.array() * cost).sqrt()).maxCoeff();
-        if (cosine <= tolerance) {
-            converged = true;
-            break;
-        }
-        ++iteration;
-        Eigen::MatrixXd system = h;
-        system.diagonal() += damping_factor * scale;
-        const Eigen::VectorXd step = system.ldlt().solve(-g);
-        if (!step.allFinite()) {
-            damping_factor *= growth;
-            growth *= 2.0;
-            if (damping_factor > 1e20) {
-                break;
-            }
-            continue;
-        }
-        Eigen::Matrix<double, 5, 1> candidate = theta;
-        for (Eigen::Index i = 0; i < n_parameters; ++i) {
-            candidate(i) += step(i);
-        }
-        const double predicted = -2.0 * step.dot(g) - step.dot(h * step);
-        const double candidate_cost = cost_at(candidate);
-        const double actual = cost - candidate_cost;
-        const double step_size = std::sqrt(step.cwiseAbs2().dot(scale));
-        const double parameter_size = std::sqrt(active.cwiseAbs2().dot(scale));
-        const bool small_reduction = predicted <= tolerance * cost && std::abs(actual) <= tolerance * cost;
-        const bool small_step = step_size <= tolerance * parameter_size;
-        if (actual > 0.0 && std::isfinite(candidate_cost)) {
-            theta = candidate;
-            const double ratio = predicted > 0.0 ? actual / predicted : 0.0;
-            const double cube = (2.0 * ratio - 1.0) * (2.0 * ratio - 1.0) * (2.0 * ratio - 1.0);
-            damping_factor *= std::max(1.0 / 3.0, 1.0 - cube);
-            damping_factor = std::max(damping_factor, 1e-15);
-            growth = 2.0;
-            cost = linearise_at(theta);
-            if (!std::isfinite(cost)) {  // cannot happen: the same simulation was finite above
-                cost = candidate_cost;
-                break;
-            }
-        } else {
-            damping_factor *= growth;
-            growth *= 2.0;
-        }
-        if (small_reduction || small_step) {
-            converged = true;
-        } else if (damping_factor > 1e20) {
-            break;
-        }
-    }
-
+    // Output-error refinement (see the file comment).
+    const numerics::LevenbergMarquardtResult refined = numerics::levenberg_marquardt(
+        theta, cost, parameters, cost_at, linearise_at, normal, gradient, options.tolerance, options.max_iterations);
+    cost = refined.cost;
+    const bool converged = refined.converged;
+    const int iteration = refined.iterations;
     if (!fit.equation_error_start && !converged) {
         std::ostringstream problem;
         problem << "do not determine a positive mass: the equation-error estimate is m = " << step1(0)

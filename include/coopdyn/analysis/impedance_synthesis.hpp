@@ -34,6 +34,7 @@
 #include "coopdyn/config.hpp"
 #include "coopdyn/detail/validation.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
+#include "coopdyn/numerics/non_negative_least_squares.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -66,115 +67,6 @@ template <typename Scalar> struct SynthesisResult {
 };
 
 namespace detail {
-
-/// Lawson-Hanson non-negative least squares (Lawson and Hanson, Solving Least Squares Problems,
-/// 1974, algorithm NNLS): argmin ||A x - b||_2 subject to x >= 0.
-///
-/// The columns of A and b are scaled to unit norm first, so every threshold below is relative and
-/// the result does not depend on units (a stiffness in N/m or in N/um). An entering variable
-/// whose unconstrained value comes out non-positive (possible only through rounding) is blocked
-/// until the passive set next changes, instead of being re-entered forever.
-inline Eigen::VectorXd non_negative_least_squares(const Eigen::MatrixXd& matrix, const Eigen::VectorXd& rhs)
-{
-    const Index unknowns = matrix.cols();
-    Eigen::VectorXd result = Eigen::VectorXd::Zero(unknowns);
-    const double rhs_norm = rhs.norm();
-    if (unknowns == 0 || !(rhs_norm > 0.0)) {
-        return result;
-    }
-    Eigen::VectorXd column_norms = matrix.colwise().norm().transpose();
-    Eigen::MatrixXd scaled = matrix;
-    for (Index j = 0; j < unknowns; ++j) {
-        if (column_norms(j) > 0.0) {
-            scaled.col(j) /= column_norms(j);
-        }
-    }
-    const Eigen::VectorXd target = rhs / rhs_norm;
-    const double threshold = 64.0 * static_cast<double>(std::max<Index>(unknowns, matrix.rows())) *
-                             std::numeric_limits<double>::epsilon();
-
-    Eigen::VectorXd solution = Eigen::VectorXd::Zero(unknowns);
-    std::vector<bool> passive(static_cast<std::size_t>(unknowns), false);
-    std::vector<bool> blocked(static_cast<std::size_t>(unknowns), false);
-    const auto at = [](std::vector<bool>& flags, Index j) { return flags[static_cast<std::size_t>(j)]; };
-    const auto set = [](std::vector<bool>& flags, Index j, bool value) { flags[static_cast<std::size_t>(j)] = value; };
-
-    // Unconstrained least squares on the passive set, zero elsewhere.
-    const auto passive_solution = [&]() {
-        std::vector<Index> columns;
-        for (Index j = 0; j < unknowns; ++j) {
-            if (at(passive, j)) {
-                columns.push_back(j);
-            }
-        }
-        Eigen::MatrixXd reduced(scaled.rows(), static_cast<Index>(columns.size()));
-        for (std::size_t c = 0; c < columns.size(); ++c) {
-            reduced.col(static_cast<Index>(c)) = scaled.col(columns[c]);
-        }
-        const Eigen::VectorXd reduced_solution = reduced.completeOrthogonalDecomposition().solve(target);
-        Eigen::VectorXd candidate = Eigen::VectorXd::Zero(unknowns);
-        for (std::size_t c = 0; c < columns.size(); ++c) {
-            candidate(columns[c]) = reduced_solution(static_cast<Index>(c));
-        }
-        return candidate;
-    };
-
-    const int iteration_limit = 10 * static_cast<int>(unknowns) + 30;
-    for (int outer = 0; outer < iteration_limit; ++outer) {
-        const Eigen::VectorXd gradient = scaled.transpose() * (target - scaled * solution);
-        Index entering = -1;
-        double largest = threshold;
-        for (Index j = 0; j < unknowns; ++j) {
-            if (!at(passive, j) && !at(blocked, j) && column_norms(j) > 0.0 && gradient(j) > largest) {
-                largest = gradient(j);
-                entering = j;
-            }
-        }
-        if (entering < 0) {
-            break;  // Kuhn-Tucker conditions hold: no inactive variable can reduce the residual.
-        }
-        set(passive, entering, true);
-        bool first_inner = true;
-        for (int inner = 0; inner < iteration_limit; ++inner) {
-            const Eigen::VectorXd candidate = passive_solution();
-            if (first_inner && !(candidate(entering) > 0.0)) {
-                // Rounding: the entering variable cannot move into the feasible region.
-                set(passive, entering, false);
-                set(blocked, entering, true);
-                break;
-            }
-            first_inner = false;
-            bool feasible = true;
-            double step = 1.0;
-            for (Index j = 0; j < unknowns; ++j) {
-                if (at(passive, j) && !(candidate(j) > 0.0)) {
-                    feasible = false;
-                    const double denominator = solution(j) - candidate(j);
-                    if (denominator > 0.0) {
-                        step = std::min(step, solution(j) / denominator);
-                    }
-                }
-            }
-            if (feasible) {
-                solution = candidate;
-                std::fill(blocked.begin(), blocked.end(), false);
-                break;
-            }
-            solution += step * (candidate - solution);
-            for (Index j = 0; j < unknowns; ++j) {
-                if (at(passive, j) && !(solution(j) > threshold)) {
-                    solution(j) = 0.0;
-                    set(passive, j, false);
-                }
-            }
-            std::fill(blocked.begin(), blocked.end(), false);
-        }
-    }
-    for (Index j = 0; j < unknowns; ++j) {
-        result(j) = column_norms(j) > 0.0 ? rhs_norm * std::max(solution(j), 0.0) / column_norms(j) : 0.0;
-    }
-    return result;
-}
 
 /// The 21 independent entries of a symmetric 6x6 matrix (lower triangle, off-diagonal entries
 /// weighted by sqrt(2) so that the Euclidean norm equals the Frobenius norm).
@@ -289,7 +181,7 @@ SynthesisResult<double> synthesize_gains(const Eigen::MatrixBase<DerivedR>& r,
     // Fit the symmetric part: it is the Frobenius-closest symmetric matrix, and every reachable
     // matrix is symmetric.
     const Matrix6<double> symmetric_part = 0.5 * (requested + requested.transpose());
-    const Eigen::VectorXd gains = detail::non_negative_least_squares(basis, detail::symmetric_entries(symmetric_part));
+    const Eigen::VectorXd gains = numerics::non_negative_least_squares(basis, detail::symmetric_entries(symmetric_part));
 
     SynthesisResult<double> result;
     result.tolerance = tolerance;

@@ -174,9 +174,8 @@ public:
     template <typename Derived> SpatialInertia shifted(const Eigen::MatrixBase<Derived>& r) const noexcept
     {
         EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
-        SpatialInertia result = *this;
+        SpatialInertia result;
         result.add_shifted(*this, r);
-        result -= *this;
         return result;
     }
 
