@@ -1,5 +1,5 @@
 // Explicit instantiation of every class template for the supported scalars, arm counts and
-// end-effector models, so that every member compiles (DESIGN.md section 3), plus compile-time
+// end-effector models, so that every member compiles, plus compile-time
 // checks of the size helpers and of the fast-path selection traits.
 #include <coopdyn/coopdyn.hpp>
 

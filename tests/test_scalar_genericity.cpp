@@ -1,4 +1,4 @@
-// Scalar genericity of the per-tick algorithm (DESIGN.md section 3): interaction_dynamics runs
+// Scalar genericity of the per-tick algorithm: interaction_dynamics runs
 // with float and with Eigen::AutoDiffScalar, for fixed N = 2 and for N = Dynamic.
 //
 // References: float is compared with double; autodiff derivatives of the interaction wrenches

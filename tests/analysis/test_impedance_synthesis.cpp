@@ -28,7 +28,7 @@
 #include <cstdio>
 #include <vector>
 
-// Every member of the class template compiles (DESIGN.md section 3).
+// Every member of the class template compiles.
 template struct coopdyn::SynthesisResult<double>;
 
 namespace {

@@ -39,7 +39,7 @@
 #include <algorithm>
 #include <vector>
 
-// Every member of the class template compiles, for both inertia paths (DESIGN.md section 3).
+// Every member of the class template compiles, for both inertia paths.
 template struct coopdyn::WrenchDecomposition<coopdyn::Model<double, 2>>;
 template struct coopdyn::WrenchDecomposition<
     coopdyn::Model<double, coopdyn::Dynamic, coopdyn::ResolvedAccelerationEndEffector>>;
@@ -239,7 +239,7 @@ TEST(InternalWrenches, MatchLiteralEquation53AndKktForTwoToSixArms)
 
 TEST(InternalWrenches, FloatScalarMatchesDoubleLiteral)
 {
-    // Generic over Scalar (DESIGN.md section 3): float inputs, compared with the double literal
+    // Generic over Scalar: float inputs, compared with the double literal
     // (53) on the same (float-representable) numbers; float keeps about 7 digits.
     double worst = 0.0;
     for (Index arms = 2; arms <= 6; ++arms) {

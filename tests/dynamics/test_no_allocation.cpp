@@ -1,4 +1,4 @@
-// The per-tick path allocates nothing once Model and Data are built (DESIGN.md section 3).
+// The per-tick path allocates nothing once Model and Data are built.
 //
 // The detectors (tests/allocation_counter.hpp) count calls of the replaced global operator new
 // and Eigen heap allocations (EIGEN_RUNTIME_NO_MALLOC) inside a counting window; the Sanity tests
