@@ -68,8 +68,8 @@ inline Eigen::VectorXd non_negative_least_squares(const Eigen::MatrixXd& matrix,
     Eigen::VectorXd solution = Eigen::VectorXd::Zero(unknowns);
     std::vector<bool> passive(static_cast<std::size_t>(unknowns), false);
     std::vector<bool> blocked(static_cast<std::size_t>(unknowns), false);
-    const auto at = [](std::vector<bool>& flags, Index j) { return flags[static_cast<std::size_t>(j)]; };
-    const auto set = [](std::vector<bool>& flags, Index j, bool value) { flags[static_cast<std::size_t>(j)] = value; };
+    const auto at = [](std::vector<bool>& flags, Eigen::Index j) { return flags[static_cast<std::size_t>(j)]; };
+    const auto set = [](std::vector<bool>& flags, Eigen::Index j, bool value) { flags[static_cast<std::size_t>(j)] = value; };
 
     const auto passive_solution = [&]() { return detail::passive_least_squares(scaled, target, passive); };
 
