@@ -5,9 +5,9 @@
 //      restoring wrench (K), finite differences of the spring potential (the restoring wrench
 //      itself), and the printed (33)-(34) form shown to miss them (E3);
 //   3. kinetic energy and dissipated power written out from their definitions (M, D);
-//   4. a simulation of the full model (coopdyn::Simulator, section 5 interaction solver) against
-//      the test's own RK4 on the reduced model (30), without gravity (zero desired wrenches) for
-//      random grasps and with gravity compensated by (26) for the beam;
+//   4. a simulation of the full model (coopdyn::Simulator, the interaction wrench (18) of
+//      docs/dynamics.md) against the test's own RK4 on the reduced model (30), without gravity
+//      (zero desired wrenches) for random grasps and with gravity compensated by (26) for the beam;
 //   5. the energy balance of Lemma 1 along a disturbed full-model simulation (passivity).
 // Randomness is seeded; grasps are non-symmetric (random offsets, different gains, non-identity
 // grasp orientations, coupled end-effector inertias), and N varies.
@@ -840,9 +840,9 @@ template <typename ModelType> DisturbedSystem<ModelType> disturbed_system(Index 
     return DisturbedSystem<ModelType>{std::move(model), setpoints, equilibrium, initial};
 }
 
-/// Simulates the full model (Simulator, RK4, 1 ms, the section 5 interaction solver) and the
-/// reduced model (30) (the test's own RK4) side by side for 2 s under the multisine disturbance;
-/// returns the largest pose difference (position + angle).
+/// Simulates the full model (Simulator, RK4, 1 ms, the interaction wrench (18) of
+/// docs/dynamics.md) and the reduced model (30) (the test's own RK4) side by side for 2 s under
+/// the multisine disturbance; returns the largest pose difference (position + angle).
 template <typename ModelType> double compare_reduced_and_full(const DisturbedSystem<ModelType>& system, const char* label)
 {
     const Index arms_count = system.model.arms();

@@ -3,7 +3,7 @@
 // (coordination, load distribution, interaction dynamics, wrench decomposition).
 //
 // References, none of which the code under test was derived from (it uses the structured
-// reduced-coordinate form of section 8):
+// reduced-coordinate form of (53), docs/analysis.md):
 // - the literal (53): M' = blkdiag(M_1..M_N), A' with 6(N-1) relative constraints (arm 1 against
 //   arm i, derived in literal_relative_constraint from docs/model.md), b' from the
 //   centripetal terms, h'_int = M'^(1/2) (A' M'^(-1/2))^+ (b' - A' M'^-1 h'^x) with the symmetric
@@ -274,7 +274,7 @@ TEST(InternalWrenches, SingleArmHasNoInternalWrench)
 }
 
 // ---------------------------------------------------------------------------------------------
-// B. Identities of section 8 (Definition 1).
+// B. Identities of the internal wrench (53) (Definition 1, docs/analysis.md).
 
 TEST(InternalWrenches, PropertiesNullSpaceRigidMotionAndExternalPart)
 {
@@ -524,7 +524,8 @@ template <typename ModelType> void expect_coordinated_motion_carries_load_withou
     // The end-effectors carry the load: G h'_ext = -h_o^d (h_o = G hbar = -G h', (23)).
     const double load_carried = relative_error(Vector6d(-(grasp * decomposition.external)), object_wrench);
     // The wrench actually exchanged is non-squeezing: as a commanded wrench of the reduced system
-    // at rest it would need no internal wrench (the distribution is M'-weighted, section 6).
+    // at rest it would need no internal wrench (the distribution is M'-weighted, (25)-(26),
+    // docs/coordination.md).
     const VectorXd squeeze_of_actual = coopdyn::internal_wrenches(model.end_effector_inertias(), data.grasp_offsets,
                                                                   Vector3d::Zero(), h_end_effectors);
     const double actual_internal = squeeze_of_actual.norm() / h_end_effectors.norm();

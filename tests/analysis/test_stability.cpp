@@ -4,8 +4,8 @@
 //     zeta = d / (2 sqrt(k m)), poles -zeta omega +- i omega sqrt(1 - zeta^2);
 //   - the characteristic polynomial det(M s^2 + D s + K) of (52) (a second eigenvalue method),
 //     and Vieta's product of its roots, det K / det M;
-//   - a finite-difference linearisation of the full cooperative model (section 5 solver) about
-//     an equilibrium;
+//   - a finite-difference linearisation of the full cooperative model (the interaction wrench
+//     (18), docs/dynamics.md) about an equilibrium;
 //   - Rayleigh damping D = a M + b K, whose modes are known to be classical;
 //   - the literal centre of stiffness sum k_i r_i / sum k_i, and the physical property that a
 //     force through it produces a pure translation.
@@ -235,7 +235,8 @@ double characteristic_singularity(const Impedance& impedance, const Complex& s)
 }
 
 /// Central-difference linearisation of the full cooperative model (interaction_dynamics, the
-/// section 5 solver) about an equilibrium at rest, in the state [twist displacement; twist].
+/// interaction wrench (18), docs/dynamics.md) about an equilibrium at rest, in the state
+/// [twist displacement; twist].
 Eigen::Matrix<double, 12, 12> full_model_state_matrix(const System& system, double step)
 {
     coopdyn::Data<ModelX> data(system.model);
