@@ -58,7 +58,8 @@ using State = coopdyn::RigidBodyState<double>;
 constexpr double pi = 3.14159265358979323846;
 
 // ---------------------------------------------------------------------------------------------
-// Helpers, written from the definitions (docs/conventions.md, docs/spatial.md, docs/model.md), not from the library.
+// Helpers, written from the definitions (docs/conventions.md, docs/spatial.md, docs/model.md),
+// not from the library.
 // ---------------------------------------------------------------------------------------------
 
 /// Rotation matrix of a unit quaternion, written out.
@@ -197,7 +198,7 @@ Vector3d world_offset(const ArmParameters& arm, const Quaterniond& object_orient
 }
 
 // ---------------------------------------------------------------------------------------------
-// 1. Worked numbers of docs/analysis.md
+// 1. Worked numbers of docs/analysis.md (example after Theorem 2; (56), (59), (61))
 // ---------------------------------------------------------------------------------------------
 
 Matrix6d diagonal6(double a, double b, double c, double d, double e, double f)

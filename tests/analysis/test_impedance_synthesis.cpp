@@ -7,8 +7,8 @@
 //   positive gains on non-symmetric grasps must come back (gains and matrices);
 // - the worked numbers of docs/analysis.md (two-arm examples, section V beam);
 // - for unreachable targets, the optimality (Kuhn-Tucker) conditions of the non-negative least
-//   squares fit, evaluated on the cone generators written out from the block formula of
-//   docs/analysis.md in this file;
+//   squares fit, evaluated on the cone generators written out from the block formula of K
+//   (E3, docs/analysis.md) in this file;
 // - for classical damping, the generalized eigenproblem K v = w^2 M v (Eigen's
 //   GeneralizedSelfAdjointEigenSolver), the commutator D M^-1 K - K M^-1 D, and the scalar
 //   formula d = 2 zeta sqrt(m k) for diagonal M, K.
@@ -41,7 +41,7 @@ using Model2 = coopdyn::Model<double, 2>;
 // Literal references.
 
 /// T(r) = [[I3, S(r)^T], [S(r), S(r) S(r)^T]]: one arm's unit translational gain at the object
-/// (block formula of docs/analysis.md).
+/// (block formula of K, errata E3, docs/analysis.md).
 Matrix6d literal_translational_generator(const Vector3d& r)
 {
     const Matrix3d s = hat(r);

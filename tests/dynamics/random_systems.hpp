@@ -1,6 +1,6 @@
 // Seeded random test systems and literal (library-independent) references for the dynamics
-// tests: SPD inertias, non-symmetric grasps, and the constraint matrix A, bias b and grasp matrix
-// G written out from docs/model.md without calling coopdyn.
+// tests: SPD inertias, non-symmetric grasps, and the constraint matrix A (14), bias b (13) and
+// grasp matrix G (24) written out from docs/model.md without calling coopdyn.
 #pragma once
 
 #include <Eigen/Core>
@@ -110,7 +110,7 @@ inline MatrixXd assemble_inertia(const MatrixXd& object_inertia, const MatrixXd&
     return result;
 }
 
-/// A of docs/model.md, block row i: [[-I3, S(r_i)], [0, -I3]] | I6 in arm i's columns.
+/// A of (14), docs/model.md, block row i: [[-I3, S(r_i)], [0, -I3]] | I6 in arm i's columns.
 inline MatrixXd literal_constraint_matrix(const MatrixXd& r)
 {
     const Index arms = r.cols();
@@ -124,7 +124,7 @@ inline MatrixXd literal_constraint_matrix(const MatrixXd& r)
     return a;
 }
 
-/// b of docs/model.md: b_i = [S(w)^2 r_i; 0].
+/// b of (13), docs/model.md: b_i = [S(w)^2 r_i; 0].
 inline VectorXd literal_constraint_bias(const MatrixXd& r, const Vector3d& omega)
 {
     const Index arms = r.cols();

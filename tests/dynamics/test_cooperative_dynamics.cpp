@@ -1,8 +1,8 @@
 // The Model/Data algorithm interaction_dynamics (dynamics/cooperative_dynamics.hpp) against an
-// independent recomputation from docs/spatial.md, docs/model.md, docs/dynamics.md: grasp kinematics written out with
-// quaternion algebra by hand, the impedance law (1)/(5)/(6) with a rotation-matrix stiffness
-// torque kappa sin(theta) u, the resolved-acceleration law (20), hSigma_o with gravity (E1), and
-// the generic Udwadia-Kalaba solve of the assembled system.
+// independent recomputation from docs/spatial.md, docs/model.md and docs/dynamics.md: grasp
+// kinematics (10) written out with quaternion algebra by hand, the impedance law (1)/(5)/(6)
+// with a rotation-matrix stiffness torque kappa sin(theta) u, the resolved-acceleration law (20),
+// hSigma_o with gravity (E1), and the generic Udwadia-Kalaba solve (18) of the assembled system.
 #include "coopdyn/dynamics/cooperative_dynamics.hpp"
 #include "coopdyn/dynamics/udwadia_kalaba.hpp"
 #include "coopdyn/model/resolved_acceleration_end_effector.hpp"

@@ -92,7 +92,7 @@ struct Reference {
     VectorXd wrenches;
 };
 
-/// Generic UK on M = blkdiag(M_o, M_1..M_N), A and b written out from docs/model.md.
+/// Generic UK on M = blkdiag(M_o, M_1..M_N), A (14) and b (13) written out from docs/model.md.
 Reference uk_reference(const MatrixXd& object_inertia, const MatrixXd& ee_inertia, const MatrixXd& r,
                        const Vector3d& omega, const VectorXd& h_sigma)
 {

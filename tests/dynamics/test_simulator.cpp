@@ -1,8 +1,9 @@
 // Tests of coopdyn::Simulator (include/coopdyn/dynamics/simulator.hpp) against physical
 // invariants and closed forms that the implementation was not derived from (docs/conventions.md,
-// docs/model.md, docs/dynamics.md, docs/analysis.md): energy conservation, free fall, momentum conservation, the rigid-grasp constraint,
-// the order of convergence of both integrators, the steady state of the Section V beam, and the
-// observer contract of Simulator::run.
+// docs/model.md, docs/dynamics.md, docs/analysis.md): energy conservation (with the potential
+// -m_o g^T p_o of errata E7), free fall, momentum conservation, the rigid-grasp constraint, the
+// order of convergence of both integrators, the steady state of the Section V beam ((61)), and
+// the observer contract of Simulator::run.
 //
 // Set-ups are deliberately non-symmetric: three arms at asymmetric (seeded random) offsets with
 // different masses, inertias and gains, a rotated anisotropic object and a tumbling initial twist.
@@ -317,8 +318,8 @@ TEST(SimulatorEnergy, SemiImplicitEulerEnergyErrorStaysBounded)
     const ConservativeSystem system = ConservativeSystem::build(2024u);
     // Bound: symplectic Euler on an oscillator of frequency w conserves a modified energy
     // H~ = E - (h/2) w^2 x v, so |E - H~| / E <= h w / 2 without growth. Linearised about the loaded
-    // state, the fastest mode of this system is below ~20 rad/s (K of docs/analysis.md against
-    // the composite inertia; checked below), so h w / 2 < 1e-2 at h = 1 ms. The tumbling object
+    // state, the fastest mode of this system is below ~20 rad/s (K of Theorem 2, docs/analysis.md,
+    // against the composite inertia; checked below), so h w / 2 < 1e-2 at h = 1 ms. The tumbling object
     // and the rotations make the scheme only approximately symplectic, hence we also require the
     // error not to grow: the worst deviation over the second five seconds is at most twice that of
     // the first five, and the mean deviation over the last second is within the oscillation band.
@@ -670,7 +671,7 @@ TEST(SimulatorConvergence, RungeKutta4IsFourthOrderAndSemiImplicitEulerFirstOrde
 }
 
 // ---------------------------------------------------------------------------------------------
-// 6. The beam of docs/analysis.md, held still and pushed
+// 6. The Section V beam ((56), (59), (61), docs/analysis.md), held still and pushed
 // ---------------------------------------------------------------------------------------------
 
 struct Beam {
@@ -731,7 +732,7 @@ TEST(SimulatorBeam, GravityCompensatedBeamIsHeldStill)
 TEST(SimulatorBeam, PushedBeamSettlesAtTheApparentStiffness)
 {
     const Beam beam = section9_beam();
-    // K = diag(600 I3, 196, 100, 196) (docs/analysis.md): K_xx = 2 k = 600,
+    // K = diag(600 I3, 196, 100, 196) ((61), docs/analysis.md): K_xx = 2 k = 600,
     // K_zz = 2 kappa + 2 k 0.4^2 = 196. A 10 N force in x and a 1 Nm torque about z are applied
     // together: for this symmetric grasp (r_1 = -r_2, equal arms) a translation d and a rotation
     // about z do not couple in the restoring wrench (sum k (R - I) r_i = 0 and

@@ -161,7 +161,7 @@ Vector6<typename ModelType::Scalar> reduced_model_acceleration(
     return impedance.inertia.llt().solve(wrench);
 }
 
-/// \brief Storage function of Lemma 1 (docs/analysis.md):
+/// \brief Storage function of Lemma 1 ((47) with gravity compensated, docs/analysis.md):
 /// V = 1/2 xdot_o^T M xdot_o + sum_i U_i, at the state in `data`, for the setpoint poses.
 template <typename ModelType>
 typename ModelType::Scalar storage_function(

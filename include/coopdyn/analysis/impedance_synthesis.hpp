@@ -83,7 +83,7 @@ inline Eigen::Matrix<double, 21, 1> symmetric_entries(const Matrix6<double>& mat
 }
 
 /// T(r) = G_i diag(I3, 0) G_i^T = [[I3, S(r)^T], [S(r), S(r) S(r)^T]]: the object matrix of a
-/// unit translational gain at grasp offset r (docs/analysis.md).
+/// unit translational gain at grasp offset r (errata E3, docs/analysis.md).
 inline Matrix6<double> unit_translational_contribution(const Vector3<double>& r_i)
 {
     return CentralInertia<double>(1.0, Symmetric3<double>::Zero()).shifted(r_i).matrix();

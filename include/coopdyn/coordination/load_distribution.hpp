@@ -14,7 +14,7 @@
 /// wrench is first shifted from the centre of mass to c (t_c = t_o - c x f). The result satisfies
 /// G G+_M = I6 for every grasp, and distributes the wrench as the rigid motion of bodies with
 /// those inertias would: with the end-effector inertias as weights (m*_i = m_i, J*_i = J_i) it
-/// produces no internal wrench (docs/analysis.md).
+/// produces no internal wrench ((53), docs/analysis.md).
 ///
 /// Error policy, said in the names (docs/conventions.md, "Errors"):
 /// - `weighted_grasp_inverse`, `load_distribution`: validate their arguments and throw

@@ -35,7 +35,7 @@ void grasp_kinematics(const ModelType& model, Data<ModelType>& data,
 
 /// \brief One tick of the cooperative dynamics: grasp kinematics, the end-effector motion
 /// wrenches h_i^x (6) (or h_i^Pi (20)), hSigma_i = h_i^x - h_i^d + htilde_i (15), hSigma_o (16)
-/// with gravity (E1), then the structured interaction solve (docs/dynamics.md).
+/// with gravity (E1), then the structured interaction solve of (18) (docs/dynamics.md).
 ///
 /// Fills every field of `data`; returns data.wrenches = [h_o; h_1; ...; h_N]. The solver's path
 /// is chosen at compile time from the end-effector model's inertia type.

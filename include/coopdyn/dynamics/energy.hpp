@@ -1,7 +1,7 @@
 /// \file
 /// \brief Energy and momentum of the cooperative system (object plus end-effectors), evaluated
 /// on a Data filled by grasp_kinematics or interaction_dynamics. Used to check simulations
-/// against physical invariants and for the storage function of docs/analysis.md.
+/// against physical invariants and for the storage function of Lemma 1 (docs/analysis.md).
 #pragma once
 
 #include "coopdyn/config.hpp"

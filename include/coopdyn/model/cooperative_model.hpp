@@ -27,7 +27,8 @@ template <typename EndEffectorModel> struct Arm {
     EndEffectorModel end_effector{};
     /// Pose of the end-effector frame in the object's body frame: position r_i_body (from the
     /// object's centre of mass) and constant relative orientation dq_i, so that
-    /// p_i = p_o + R(q_o) r_i_body and q_i = q_o (x) dq_i (docs/model.md).
+    /// p_i = p_o + R(q_o) r_i_body and q_i = q_o (x) dq_i (the rigid grasp of (10)-(12),
+    /// docs/model.md).
     Pose<Scalar> grasp_body{};
 };
 
