@@ -1,7 +1,6 @@
 // Allocation detectors for the "nothing allocates on the per-tick path" tests (docs/conventions.md,
 // "The per-tick path"). Include this FIRST in a test's single translation unit, before any Eigen
-// header:
-// it replaces the global allocation functions of that executable.
+// header: it replaces the global allocation functions of that executable.
 //
 // Two independent detectors, both active inside a counting window (count_allocations):
 // - every replaceable global operator new / new[] (plain, nothrow, aligned) is replaced and counts
