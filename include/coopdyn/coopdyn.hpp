@@ -29,5 +29,6 @@
 #include "coopdyn/analysis/internal_wrenches.hpp"
 #include "coopdyn/analysis/stability.hpp"
 #include "coopdyn/numerics/levenberg_marquardt.hpp"
+#include "coopdyn/numerics/linear_discretization.hpp"
 #include "coopdyn/numerics/matrix_exponential.hpp"
 #include "coopdyn/numerics/non_negative_least_squares.hpp"

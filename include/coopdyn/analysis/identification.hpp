@@ -1,6 +1,6 @@
 /// \file
 /// \brief Grey-box identification of the apparent object impedance from logged motion and
-/// wrench (the experiment of the paper's section V; docs/analysis.md).
+/// wrench (the experiment of the paper's section V; docs/analysis.md, "Identification").
 ///
 /// The identified model is the 1-DOF projection of the linearised object dynamics (52), i.e. of
 /// the reduced model (30) without its Coriolis term (quadratic in the twist) and with the exact
@@ -11,7 +11,7 @@
 /// where p is the displacement of one object coordinate from its equilibrium (p = 0 when f = 0)
 /// and f the disturbance force (or torque) along that coordinate. The data are uniformly sampled:
 /// p[n] = p(n T), f[n] = f(n T), n = 0 .. N-1. Design/analysis-time code: it allocates, throws
-/// on bad input and computes in double whatever the input scalar type.
+/// InvalidArgument on bad input and computes in double whatever the input scalar type.
 ///
 /// Method (two steps):
 /// 1. Equation error. Integrating the ODE twice from t = 0 gives an equation that is linear in
@@ -31,17 +31,13 @@
 ///    best is the start. Identification fails only if step 2 then does not converge.
 /// 2. Output error. The model is simulated from an initial state (p0, v0) with the measured force
 ///    and sum_n (p_model[n] - p[n])^2 is minimised over (m, d, k) and, by default, (p0, v0), by
-///    Levenberg-Marquardt (Marquardt's diagonal scaling, Nielsen's damping update). The simulation
-///    is exact for the chosen interpolation of the force between samples: the ODE is linear and
-///    time-invariant, so one step is z[n+1] = Phi z[n] + Gamma f_window, with Phi and Gamma read
-///    off the matrix exponential of the state matrix augmented by a chain of integrators that
-///    generates the interpolating polynomial (no step-size error, only rounding). The
-///    sensitivities dp/dm, dp/dd, dp/dk obey the forward sensitivity equations
-///    s' = A s + (dA/dtheta) x + (dB/dtheta) f, which are linear in the same input; they are
-///    discretised exactly together with the state (an 8-state system), so the Jacobian is the
-///    exact derivative of the simulated output. dp/dp0 and dp/dv0 are the columns of Phi^n.
-///    Noise on p is handled here: it enters the cost additively, so the minimiser is unbiased and
-///    the mean squared output error tends to the noise variance.
+///    Levenberg-Marquardt (numerics/levenberg_marquardt.hpp). The simulation is exact for the
+///    chosen interpolation of the force between samples: the ODE is linear and time-invariant, so
+///    one step is x[n+1] = Phi x[n] + W f_window (numerics/linear_discretization.hpp; no
+///    step-size error, only rounding). The Jacobian is the exact derivative of the simulated
+///    output: the recurrence differentiated with respect to each parameter
+///    (impedance_discretization.hpp). Noise on p is handled here: it enters the cost additively,
+///    so the minimiser is unbiased and the mean squared output error tends to the noise variance.
 ///
 /// Force interpolation: `cubic` (default) fits the cubic through the four nearest samples
 /// (one-sided at the two ends); its error for a smooth force is O((omega T)^4), so smoothly
@@ -51,29 +47,29 @@
 /// estimates slightly (6e-6 relative on the beam's multisine test data, against 1e-9 with cubic).
 /// `zero_order_hold` is exact for forces held constant over each sample period (a disturbance
 /// commanded by a sampled controller, f[n] applied on [nT, (n+1)T)).
+///
+/// Reading order: the result types, the public entry points (simulate_impedance,
+/// identify_impedance, identify_diagonal_impedance), then the steps they call, in order.
 #pragma once
 
 #include "coopdyn/analysis/apparent_impedance.hpp"
+#include "coopdyn/analysis/impedance_discretization.hpp"
 #include "coopdyn/config.hpp"
 #include "coopdyn/detail/validation.hpp"
 #include "coopdyn/numerics/levenberg_marquardt.hpp"
-#include "coopdyn/analysis/impedance_discretization.hpp"
 
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <type_traits>
 
 namespace coopdyn {
-
 
 /// \brief Options of identify_impedance and identify_diagonal_impedance.
 struct IdentificationOptions {
@@ -146,276 +142,26 @@ struct DiagonalImpedanceFit {
 
 namespace detail {
 
-/// Fewest samples accepted by the identification.
-inline constexpr Eigen::Index identification_minimum_samples = 10;
+/// One axis' record: the validated samples, and the names that error messages give them.
+struct AxisRecord {
+    Eigen::VectorXd position;
+    Eigen::VectorXd force;
+    ErrorContext context;
+    std::string position_name;
+    std::string force_name;
 
-/// The samples of a vector argument as doubles; throws (naming `parameter`) unless it is a
-/// finite vector.
+    /// Both series, for failures that belong to the pair ("position/force do not excite ...").
+    std::string data_name() const { return position_name + "/" + force_name; }
+};
+
+// The steps of the public entry points, defined below them.
 template <typename Derived>
-Eigen::VectorXd identification_samples(const Eigen::MatrixBase<Derived>& samples, const std::string& context,
-                                       const std::string& parameter)
-{
-    static_assert(std::is_arithmetic_v<typename Derived::Scalar>,
-                  "identification works on real (arithmetic) samples; it computes in double");
-    if (samples.rows() != 1 && samples.cols() != 1) {
-        std::ostringstream problem;
-        problem << "must be a vector of samples, got " << samples.rows() << " x " << samples.cols();
-        fail(context, parameter, problem.str());
-    }
-    Eigen::VectorXd result(samples.size());
-    for (Eigen::Index i = 0; i < samples.size(); ++i) {
-        result(i) = static_cast<double>(samples.derived().coeff(i));
-    }
-    if (!result.allFinite()) {
-        fail(context, parameter, "must be finite (contains NaN or Inf)");
-    }
-    return result;
-}
-
-inline void check_identification_options(const IdentificationOptions& options, const std::string& context)
-{
-    if (options.max_iterations < 0) {
-        fail(context, "options.max_iterations", "must be non-negative, got " + std::to_string(options.max_iterations));
-    }
-    require_positive(options.tolerance, context, "options.tolerance");
-    const int points = interpolation_points(options.force_interpolation);
-    if (points < 1 || points > 4) {
-        fail(context, "options.force_interpolation", "is not a ForceInterpolation value");
-    }
-}
-
-/// The equation-error regression of step 1: columns [p, int p, int int p, 1, t] and the
-/// right-hand side int int f (cumulative trapezoidal rule, see the file comment).
-inline void equation_error_regression(const Eigen::VectorXd& position, const Eigen::VectorXd& force,
-                                      double sample_period, Eigen::MatrixXd& regressor, Eigen::VectorXd& rhs)
-{
-    const Eigen::Index samples = position.size();
-    const double half_period = 0.5 * sample_period;
-    regressor.resize(samples, 5);
-    rhs.resize(samples);
-    double p1 = 0.0, p2 = 0.0, f1 = 0.0, f2 = 0.0;
-    for (Eigen::Index n = 0; n < samples; ++n) {
-        if (n > 0) {
-            const double p1_next = p1 + half_period * (position(n - 1) + position(n));
-            const double f1_next = f1 + half_period * (force(n - 1) + force(n));
-            p2 += half_period * (p1 + p1_next);
-            f2 += half_period * (f1 + f1_next);
-            p1 = p1_next;
-            f1 = f1_next;
-        }
-        regressor(n, 0) = position(n);
-        regressor(n, 1) = p1;
-        regressor(n, 2) = p2;
-        regressor(n, 3) = 1.0;
-        regressor(n, 4) = static_cast<double>(n) * sample_period;
-        rhs(n) = f2;
-    }
-}
-
-/// (m, d, k, a, c) -> (m, d, k, p0, v0) with a = -m p0, c = -m v0 - d p0 (m != 0).
-inline Eigen::Matrix<double, 5, 1> initial_state_from_regression(double mass, double damping, double stiffness,
-                                                                 double offset, double slope)
-{
-    const double initial_position = -offset / mass;
-    const double initial_velocity = -(slope + damping * initial_position) / mass;
-    Eigen::Matrix<double, 5, 1> estimate;
-    estimate << mass, damping, stiffness, initial_position, initial_velocity;
-    return estimate;
-}
-
-/// Step 1: equation-error estimate by double integration (see the file comment). Returns the
-/// regression's solution (m, d, k, a, c); m may be <= 0 (low signal-to-noise ratio: noise on p
-/// biases the coefficient of p towards zero). Throws when the regression is singular
-/// (unexcited data) or its solution is not finite.
-inline Eigen::Matrix<double, 5, 1> equation_error_estimate(const Eigen::VectorXd& position,
-                                                           const Eigen::VectorXd& force, double sample_period,
-                                                           const std::string& context,
-                                                           const std::string& position_name,
-                                                           const std::string& force_name)
-{
-    Eigen::MatrixXd regressor;
-    Eigen::VectorXd rhs;
-    equation_error_regression(position, force, sample_period, regressor, rhs);
-    // Dynamic-size small matrices below: fixed 5x5 SVDs trip GCC 12's -Warray-bounds false positives.
-    const Eigen::VectorXd norms = regressor.colwise().norm().transpose();
-    const char* const unexcited =
-        "do not excite the dynamics: the equation-error regression [p, int p, int int p, 1, t] is singular "
-        "(constant or zero motion, or motion that does not separate m, d and k)";
-    if (!(norms.minCoeff() > 0.0) || !norms.allFinite() || !rhs.allFinite()) {
-        fail(context, position_name + "/" + force_name, unexcited);
-    }
-    const Eigen::MatrixXd equilibrated = regressor * norms.cwiseInverse().asDiagonal();
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(equilibrated);
-    const Eigen::MatrixXd r = qr.matrixQR().topLeftCorner(5, 5).triangularView<Eigen::Upper>();
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(r);
-    const Eigen::VectorXd singular_values = svd.singularValues();
-    if (!(singular_values(4) > 1e-10 * singular_values(0))) {
-        std::ostringstream problem;
-        problem << unexcited << "; condition number " << singular_values(0) / singular_values(4);
-        fail(context, position_name + "/" + force_name, problem.str());
-    }
-    const Eigen::VectorXd solution = qr.solve(rhs).cwiseQuotient(norms);
-    if (!solution.allFinite()) {
-        fail(context, position_name + "/" + force_name, "give an equation-error estimate that is not finite");
-    }
-    Eigen::Matrix<double, 5, 1> result;
-    for (Eigen::Index i = 0; i < 5; ++i) {
-        result(i) = solution(i);
-    }
-    return result;
-}
-
-/// Starting point of step 2 when step 1 gives no positive mass (low signal-to-noise ratio).
-/// Profile over the mass: for a fixed m the equation-error regression is linear in the other
-/// unknowns, F2 - m p = d P1 + k P2 + a + c t, so every mass on a logarithmic grid
-/// m_j = m_ref 2^(j/2), j = -40 .. 40 (a factor 10^6 either way) gets its least-squares d, k and
-/// initial state, and the candidate whose simulated output fits the data best (the output-error
-/// cost `cost_of`, which is +inf for unusable models) is returned. m_ref = |m| of step 1, or, if
-/// that is 0, |k| / omega^2 at the geometric mean of the record's lowest and the Nyquist
-/// frequency. Throws when no candidate gives a finite simulation.
-template <typename CostFunction>
-Eigen::Matrix<double, 5, 1> mass_search_start(const Eigen::VectorXd& position, const Eigen::VectorXd& force,
-                                              double sample_period, const Eigen::Matrix<double, 5, 1>& step1,
-                                              bool estimate_initial_state, const CostFunction& cost_of,
-                                              const std::string& context, const std::string& what)
-{
-    Eigen::MatrixXd regressor;
-    Eigen::VectorXd rhs;
-    equation_error_regression(position, force, sample_period, regressor, rhs);
-    const Eigen::Index samples = position.size();
-    const Eigen::MatrixXd reduced = regressor.rightCols(4);
-    const Eigen::VectorXd norms = reduced.colwise().norm().transpose();
-    const Eigen::MatrixXd equilibrated = reduced * norms.cwiseInverse().asDiagonal();
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(equilibrated);
-    // beta(m) = beta_f - m beta_p: the reduced solution is affine in the mass.
-    const Eigen::VectorXd beta_f = qr.solve(rhs).cwiseQuotient(norms);
-    const Eigen::VectorXd beta_p = qr.solve(regressor.col(0)).cwiseQuotient(norms);
-
-    double reference = std::abs(step1(0));
-    if (!(reference > 0.0)) {
-        const double lowest = 2.0 * 3.14159265358979323846 / (static_cast<double>(samples) * sample_period);
-        const double nyquist = 3.14159265358979323846 / sample_period;
-        reference = std::abs(step1(2)) / (lowest * nyquist);
-    }
-    if (!(reference > 0.0) || !std::isfinite(reference)) {
-        fail(context, what, "do not determine the scale of the mass: step 1 gives m = 0 and k = 0");
-    }
-    Eigen::Matrix<double, 5, 1> best = Eigen::Matrix<double, 5, 1>::Zero();
-    double best_cost = std::numeric_limits<double>::infinity();
-    for (int j = -40; j <= 40; ++j) {
-        const double mass = reference * std::exp2(0.5 * static_cast<double>(j));
-        const Eigen::VectorXd beta = beta_f - mass * beta_p;
-        Eigen::Matrix<double, 5, 1> candidate =
-            initial_state_from_regression(mass, beta(0), beta(1), beta(2), beta(3));
-        if (!estimate_initial_state) {
-            candidate(3) = position(0);
-            candidate(4) = 0.0;
-        }
-        if (!candidate.allFinite()) {
-            continue;
-        }
-        const double cost = cost_of(candidate);
-        if (cost < best_cost) {
-            best_cost = cost;
-            best = candidate;
-        }
-    }
-    if (!std::isfinite(best_cost)) {
-        fail(context, what,
-             "do not determine a positive mass: step 1 gives m <= 0 and no positive mass gives a finite simulation");
-    }
-    return best;
-}
-
-/// Steps 1 and 2 on validated samples.
-inline ImpedanceFit identify_impedance_samples(const Eigen::VectorXd& position, const Eigen::VectorXd& force,
-                                               double sample_period, const IdentificationOptions& options,
-                                               const std::string& context, const std::string& position_name,
-                                               const std::string& force_name)
-{
-    const Eigen::Index samples = position.size();
-    if (samples < identification_minimum_samples) {
-        fail(context, position_name, "needs at least " + std::to_string(identification_minimum_samples) +
-                                         " samples, got " + std::to_string(samples));
-    }
-    if (force.size() != samples) {
-        fail(context, force_name, "must have as many samples as " + position_name + " (" + std::to_string(samples) +
-                                      "), got " + std::to_string(force.size()));
-    }
-    if (!(force.cwiseAbs().maxCoeff() > 0.0)) {
-        fail(context, force_name, "is identically zero: the scale of m, d and k is not determined");
-    }
-
-    const Eigen::Matrix<double, 5, 1> step1 =
-        equation_error_estimate(position, force, sample_period, context, position_name, force_name);
-    const int parameters = options.estimate_initial_state ? 5 : 3;
-
-    const double* const p = position.data();
-    const double* const f = force.data();
-    const ForceInterpolation interpolation = options.force_interpolation;
-    const auto cost_at = [&](const Eigen::Matrix<double, 5, 1>& candidate) {
-        ImpedanceDiscretization model;
-        if (!discretize_impedance(candidate(0), candidate(1), candidate(2), sample_period, interpolation, model)) {
-            return std::numeric_limits<double>::infinity();
-        }
-        return simulate_discretized(model, f, samples, candidate(3), candidate(4), p, nullptr);
-    };
-    Eigen::Matrix<double, 5, 5> normal;
-    Eigen::Matrix<double, 5, 1> gradient;
-    const auto linearise_at = [&](const Eigen::Matrix<double, 5, 1>& candidate) {
-        ImpedanceDiscretization model;
-        if (!discretize_impedance(candidate(0), candidate(1), candidate(2), sample_period, interpolation, model)) {
-            return std::numeric_limits<double>::infinity();
-        }
-        return output_error_normal_equations(model, f, p, samples, candidate(3), candidate(4), parameters, normal,
-                                             gradient);
-    };
-
-    ImpedanceFit fit;
-    fit.equation_error = {step1(0), step1(1), step1(2)};
-    fit.equation_error_start = step1(0) > 0.0;
-    Eigen::Matrix<double, 5, 1> theta;
-    if (fit.equation_error_start) {
-        theta = initial_state_from_regression(step1(0), step1(1), step1(2), step1(3), step1(4));
-        if (!options.estimate_initial_state) {
-            theta(3) = position(0);
-            theta(4) = 0.0;
-        }
-    } else {
-        theta = mass_search_start(position, force, sample_period, step1, options.estimate_initial_state, cost_at,
-                                  context, position_name + "/" + force_name);
-    }
-    double cost = linearise_at(theta);
-    if (!std::isfinite(cost)) {
-        fail(context, position_name + "/" + force_name,
-             "give an equation-error model whose simulation is not finite; the data do not fit m pdd + d pd + k p = f");
-    }
-    fit.equation_error_mean_squared_output_error =
-        (fit.equation_error_start ? cost : std::numeric_limits<double>::infinity()) / static_cast<double>(samples);
-
-    // Output-error refinement (see the file comment).
-    const numerics::LevenbergMarquardtResult refined = numerics::levenberg_marquardt(
-        theta, cost, parameters, cost_at, linearise_at, normal, gradient, options.tolerance, options.max_iterations);
-    cost = refined.cost;
-    const bool converged = refined.converged;
-    const int iteration = refined.iterations;
-    if (!fit.equation_error_start && !converged) {
-        std::ostringstream problem;
-        problem << "do not determine a positive mass: the equation-error estimate is m = " << step1(0)
-                << " and the output-error fit started from a mass search did not converge in " << iteration
-                << " iterations (the inertia is not excited, or the noise is too large)";
-        fail(context, position_name + "/" + force_name, problem.str());
-    }
-    fit.mass = theta(0);
-    fit.damping = theta(1);
-    fit.stiffness = theta(2);
-    fit.initial_position = theta(3);
-    fit.initial_velocity = theta(4);
-    fit.mean_squared_output_error = cost / static_cast<double>(samples);
-    fit.iterations = iteration;
-    fit.converged = converged;
-    return fit;
-}
+Eigen::VectorXd samples_of(const Eigen::MatrixBase<Derived>& samples, const ErrorContext& context,
+                           const std::string& parameter);
+inline void check_options(const IdentificationOptions& options, const ErrorContext& context);
+inline void check_diagonal_shapes(Index displacement_rows, Index displacement_columns, Index wrench_rows,
+                                  Index wrench_columns, const ErrorContext& context);
+inline ImpedanceFit identify_axis(const AxisRecord& record, double sample_period, const IdentificationOptions& options);
 
 }  // namespace detail
 
@@ -425,14 +171,14 @@ inline ImpedanceFit identify_impedance_samples(const Eigen::VectorXd& position, 
 /// \param initial_position p(0); \param initial_velocity pd(0).
 /// \param force f[n] = f(nT), a vector of N samples (N >= 1, >= 2 for linear, >= 4 for cubic).
 /// \param sample_period T > 0, seconds.
-/// \return p(nT), n = 0 .. N-1. Throws InvalidModel on invalid arguments.
+/// \return p(nT), n = 0 .. N-1. Throws InvalidArgument on invalid arguments.
 template <typename DerivedF>
 Eigen::VectorXd simulate_impedance(const ImpedanceParameters& parameters, double initial_position,
                                    double initial_velocity, const Eigen::MatrixBase<DerivedF>& force,
                                    double sample_period,
                                    ForceInterpolation interpolation = ForceInterpolation::cubic)
 {
-    const std::string context = "impedance simulation";
+    const detail::ErrorContext context = detail::argument_context("impedance simulation");
     detail::require_positive(parameters.mass, context, "parameters.mass");
     detail::require_positive(sample_period, context, "sample_period");
     if (!std::isfinite(parameters.damping) || !std::isfinite(parameters.stiffness)) {
@@ -441,20 +187,20 @@ Eigen::VectorXd simulate_impedance(const ImpedanceParameters& parameters, double
     if (!std::isfinite(initial_position) || !std::isfinite(initial_velocity)) {
         detail::fail(context, "initial_position/initial_velocity", "must be finite");
     }
-    const Eigen::VectorXd samples = detail::identification_samples(force, context, "force");
+    const Eigen::VectorXd samples = detail::samples_of(force, context, "force");
     const int points = detail::interpolation_points(interpolation);
+    if (points == 0) {
+        detail::fail(context, "interpolation", "is not a ForceInterpolation value");
+    }
     if (samples.size() < points) {
         detail::fail(context, "force", "needs at least " + std::to_string(points) + " samples for this interpolation");
     }
-    detail::ImpedanceDiscretization model;
-    if (!detail::discretize_impedance(parameters.mass, parameters.damping, parameters.stiffness, sample_period,
-                                      interpolation, model)) {
+    const std::optional<detail::DiscreteImpedance> model = detail::discretize_impedance(
+        parameters.mass, parameters.damping, parameters.stiffness, sample_period, interpolation);
+    if (!model) {
         detail::fail(context, "parameters", "give a transition matrix that is not finite over one sample period");
     }
-    Eigen::VectorXd result(samples.size());
-    detail::simulate_discretized(model, samples.data(), samples.size(), initial_position, initial_velocity, nullptr,
-                                 result.data());
-    return result;
+    return detail::simulated_positions(*model, samples, Eigen::Vector2d(initial_position, initial_velocity));
 }
 
 /// \brief Grey-box identification of one axis of the apparent impedance: fits
@@ -467,20 +213,21 @@ Eigen::VectorXd simulate_impedance(const ImpedanceParameters& parameters, double
 /// \param sample_period T > 0, seconds (1e-3 in the paper's experiment).
 /// \param options interpolation of the force, initial-state handling, iteration limit.
 /// \return the output-error estimate, its mean squared output error and the equation-error
-///         estimate. Throws InvalidModel (a std::invalid_argument) naming the argument when the
-///         sizes differ, N < 10, T or the data are not finite, the force is identically zero, or
-///         the data do not excite the dynamics (singular regression; or no positive mass: step 1
-///         gives m <= 0 and step 2, started from a search over the mass, does not converge).
+///         estimate. Throws InvalidArgument (a coopdyn::Error, a std::invalid_argument) naming the
+///         argument when the sizes differ, N < 10, T or the data are not finite, the force is
+///         identically zero, or the data do not excite the dynamics (singular regression; or no
+///         positive mass: step 1 gives m <= 0 and step 2, started from a search over the mass,
+///         does not converge).
 template <typename DerivedP, typename DerivedF>
 ImpedanceFit identify_impedance(const Eigen::MatrixBase<DerivedP>& position, const Eigen::MatrixBase<DerivedF>& force,
                                 double sample_period, const IdentificationOptions& options = {})
 {
-    const std::string context = "identification";
+    const detail::ErrorContext context = detail::argument_context("identification");
     detail::require_positive(sample_period, context, "sample_period");
-    detail::check_identification_options(options, context);
-    const Eigen::VectorXd p = detail::identification_samples(position, context, "position");
-    const Eigen::VectorXd f = detail::identification_samples(force, context, "force");
-    return detail::identify_impedance_samples(p, f, sample_period, options, context, "position", "force");
+    detail::check_options(options, context);
+    const detail::AxisRecord record{detail::samples_of(position, context, "position"),
+                                    detail::samples_of(force, context, "force"), context, "position", "force"};
+    return detail::identify_axis(record, sample_period, options);
 }
 
 /// \brief Diagonal 6-DOF identification: fits each axis of M xdd + D xd + K x = h (the
@@ -499,7 +246,7 @@ ImpedanceFit identify_impedance(const Eigen::MatrixBase<DerivedP>& position, con
 /// \param sample_period T > 0, seconds.
 /// \param axes which axes to fit (e.g. only x and rotation z when only those were excited);
 ///        the others are left at zero with identified[i] = false.
-/// Throws InvalidModel naming the axis and the argument (see identify_impedance).
+/// Throws InvalidArgument naming the axis and the argument (see identify_impedance).
 template <typename DerivedX, typename DerivedH>
 DiagonalImpedanceFit identify_diagonal_impedance(const Eigen::MatrixBase<DerivedX>& displacement,
                                                  const Eigen::MatrixBase<DerivedH>& wrench, double sample_period,
@@ -511,42 +258,389 @@ DiagonalImpedanceFit identify_diagonal_impedance(const Eigen::MatrixBase<Derived
     static_assert(detail::sizes_agree(DerivedX::RowsAtCompileTime, 6) &&
                       detail::sizes_agree(DerivedH::RowsAtCompileTime, 6),
                   "displacement and wrench must have 6 rows");
-    const std::string context = "diagonal identification";
-    detail::require_positive(sample_period, context, "sample_period");
-    detail::check_identification_options(options, context);
-    if (displacement.rows() != 6) {
-        detail::fail(context, "displacement", "must be 6 x N, got " + std::to_string(displacement.rows()) + " rows");
-    }
-    if (wrench.rows() != 6) {
-        detail::fail(context, "wrench", "must be 6 x N, got " + std::to_string(wrench.rows()) + " rows");
-    }
-    if (wrench.cols() != displacement.cols()) {
-        detail::fail(context, "wrench", "must have as many samples (columns) as displacement (" +
-                                            std::to_string(displacement.cols()) + "), got " +
-                                            std::to_string(wrench.cols()));
-    }
+    const std::string component = "diagonal identification";
+    detail::require_positive(sample_period, component, "sample_period");
+    detail::check_options(options, component);
+    detail::check_diagonal_shapes(displacement.rows(), displacement.cols(), wrench.rows(), wrench.cols(), component);
     static const std::array<const char*, 6> names{"translation x", "translation y", "translation z",
                                                   "rotation x",    "rotation y",    "rotation z"};
     DiagonalImpedanceFit result;
-    for (Eigen::Index axis = 0; axis < 6; ++axis) {
+    for (Index axis = 0; axis < 6; ++axis) {
         const auto index = static_cast<std::size_t>(axis);
         if (!axes[index]) {
             continue;
         }
-        const std::string axis_context = context + ", axis " + std::to_string(axis) + " (" + names[index] + ")";
+        const detail::ErrorContext context = detail::argument_context(
+            component + ", axis " + std::to_string(axis) + " (" + names[index] + ")");
         const std::string position_name = "displacement row " + std::to_string(axis);
         const std::string force_name = "wrench row " + std::to_string(axis);
-        const Eigen::VectorXd p = detail::identification_samples(displacement.row(axis), axis_context, position_name);
-        const Eigen::VectorXd f = detail::identification_samples(wrench.row(axis), axis_context, force_name);
-        const ImpedanceFit fit =
-            detail::identify_impedance_samples(p, f, sample_period, options, axis_context, position_name, force_name);
-        result.axes[index] = fit;
+        const detail::AxisRecord record{detail::samples_of(displacement.row(axis), context, position_name),
+                                        detail::samples_of(wrench.row(axis), context, force_name), context,
+                                        position_name, force_name};
+        result.axes[index] = detail::identify_axis(record, sample_period, options);
         result.identified[index] = true;
-        result.inertia(axis) = fit.mass;
-        result.damping(axis) = fit.damping;
-        result.stiffness(axis) = fit.stiffness;
+        result.inertia(axis) = result.axes[index].mass;
+        result.damping(axis) = result.axes[index].damping;
+        result.stiffness(axis) = result.axes[index].stiffness;
     }
     return result;
 }
 
+namespace detail {
+
+/// Fewest samples accepted by the identification.
+inline constexpr Index identification_minimum_samples = 10;
+
+/// The samples of a vector argument as doubles; throws (naming `parameter`) unless it is a
+/// finite vector.
+template <typename Derived>
+Eigen::VectorXd samples_of(const Eigen::MatrixBase<Derived>& samples, const ErrorContext& context,
+                           const std::string& parameter)
+{
+    static_assert(std::is_arithmetic_v<typename Derived::Scalar>,
+                  "identification works on real (arithmetic) samples; it computes in double");
+    if (samples.rows() != 1 && samples.cols() != 1) {
+        std::ostringstream problem;
+        problem << "must be a vector of samples, got " << samples.rows() << " x " << samples.cols();
+        fail(context, parameter, problem.str());
+    }
+    Eigen::VectorXd result(samples.size());
+    for (Index i = 0; i < samples.size(); ++i) {
+        result(i) = static_cast<double>(samples.derived().coeff(i));
+    }
+    if (!result.allFinite()) {
+        fail(context, parameter, "must be finite (contains NaN or Inf)");
+    }
+    return result;
+}
+
+inline void check_options(const IdentificationOptions& options, const ErrorContext& context)
+{
+    if (options.max_iterations < 0) {
+        fail(context, "options.max_iterations", "must be non-negative, got " + std::to_string(options.max_iterations));
+    }
+    require_positive(options.tolerance, context, "options.tolerance");
+    if (interpolation_points(options.force_interpolation) == 0) {
+        fail(context, "options.force_interpolation", "is not a ForceInterpolation value");
+    }
+}
+
+inline void check_diagonal_shapes(Index displacement_rows, Index displacement_columns, Index wrench_rows,
+                                  Index wrench_columns, const ErrorContext& context)
+{
+    if (displacement_rows != 6) {
+        fail(context, "displacement", "must be 6 x N, got " + std::to_string(displacement_rows) + " rows");
+    }
+    if (wrench_rows != 6) {
+        fail(context, "wrench", "must be 6 x N, got " + std::to_string(wrench_rows) + " rows");
+    }
+    if (wrench_columns != displacement_columns) {
+        fail(context, "wrench", "must have as many samples (columns) as displacement (" +
+                                    std::to_string(displacement_columns) + "), got " + std::to_string(wrench_columns));
+    }
+}
+
+/// What step 2 fits for one axis: the impedance and the initial state of the simulation.
+struct AxisModel {
+    ImpedanceParameters impedance;
+    double initial_position = 0.0;
+    double initial_velocity = 0.0;
+};
+
+/// Step 1's regression: columns [p, P1, P2, 1, t] and right-hand side F2 (see the file comment).
+struct EquationErrorRegression {
+    Eigen::MatrixXd regressor;
+    Eigen::VectorXd rhs;
+};
+
+/// Step 1's estimate: the regression's solution (m, d, k, a, c).
+struct EquationErrorEstimate {
+    ImpedanceParameters impedance;
+    double offset = 0.0;  ///< a = -m p0
+    double slope = 0.0;   ///< c = -m v0 - d p0
+};
+
+/// Step 2's least-squares problem for one axis (see the file comment).
+class OutputErrorProblem;
+
+inline void check_record(const AxisRecord& record);
+inline EquationErrorRegression equation_error_regression(const AxisRecord& record, double sample_period);
+inline EquationErrorEstimate equation_error_estimate(const EquationErrorRegression& regression,
+                                                     const AxisRecord& record);
+inline AxisModel mass_search_start(const EquationErrorRegression& regression, const EquationErrorEstimate& step1,
+                                   const OutputErrorProblem& problem, const AxisRecord& record, double sample_period);
+inline AxisModel model_from_regression(double mass, double damping, double stiffness, double offset, double slope);
+inline ImpedanceFit fit_from(const EquationErrorEstimate& step1, bool equation_error_start, const AxisModel& estimate,
+                             const numerics::LevenbergMarquardtResult& refined, Index samples);
+
+/// theta = (m, d, k, p0, v0), or (m, d, k) with the initial state held at (p[0], 0); the cost is
+/// the output error sum_n (p_model[n] - p[n])^2, +inf where the model cannot be simulated.
+class OutputErrorProblem {
+public:
+    OutputErrorProblem(const AxisRecord& record, double sample_period, const IdentificationOptions& options)
+        : record_(record), sample_period_(sample_period), options_(options)
+    {
+    }
+
+    Eigen::VectorXd parameters_of(const AxisModel& model) const
+    {
+        Eigen::VectorXd theta(options_.estimate_initial_state ? 5 : 3);
+        theta.head<3>() << model.impedance.mass, model.impedance.damping, model.impedance.stiffness;
+        if (options_.estimate_initial_state) {
+            theta.tail<2>() << model.initial_position, model.initial_velocity;
+        }
+        return theta;
+    }
+
+    AxisModel model_of(const Eigen::VectorXd& theta) const
+    {
+        const Eigen::Vector2d state = initial_state_of(theta);
+        return {{theta(0), theta(1), theta(2)}, state(0), state(1)};
+    }
+
+    double cost(const Eigen::VectorXd& theta) const
+    {
+        const std::optional<DiscreteImpedance> model = discretize(theta);
+        return model ? output_error_cost(*model, record_.force, record_.position, initial_state_of(theta))
+                     : std::numeric_limits<double>::infinity();
+    }
+
+    numerics::NormalEquations linearise(const Eigen::VectorXd& theta) const
+    {
+        const std::optional<DiscreteImpedance> model = discretize(theta);
+        if (!model) {
+            return {std::numeric_limits<double>::infinity(), {}, {}};
+        }
+        return output_error_normal_equations(*model, record_.force, record_.position, initial_state_of(theta),
+                                             theta.size());
+    }
+
+private:
+    std::optional<DiscreteImpedance> discretize(const Eigen::VectorXd& theta) const
+    {
+        return discretize_impedance(theta(0), theta(1), theta(2), sample_period_, options_.force_interpolation);
+    }
+
+    Eigen::Vector2d initial_state_of(const Eigen::VectorXd& theta) const
+    {
+        return theta.size() == 5 ? Eigen::Vector2d(theta(3), theta(4)) : Eigen::Vector2d(record_.position(0), 0.0);
+    }
+
+    const AxisRecord& record_;
+    double sample_period_;
+    const IdentificationOptions& options_;
+};
+
+/// Steps 1 and 2 for one axis (see the file comment).
+inline ImpedanceFit identify_axis(const AxisRecord& record, double sample_period, const IdentificationOptions& options)
+{
+    check_record(record);
+    const EquationErrorRegression regression = equation_error_regression(record, sample_period);
+    const EquationErrorEstimate step1 = equation_error_estimate(regression, record);
+    const OutputErrorProblem problem(record, sample_period, options);
+    const bool equation_error_start = step1.impedance.mass > 0.0;
+    const AxisModel start =
+        equation_error_start
+            ? model_from_regression(step1.impedance.mass, step1.impedance.damping, step1.impedance.stiffness,
+                                    step1.offset, step1.slope)
+            : mass_search_start(regression, step1, problem, record, sample_period);
+
+    const numerics::LevenbergMarquardtResult refined = numerics::levenberg_marquardt(
+        problem.parameters_of(start), [&](const Eigen::VectorXd& theta) { return problem.cost(theta); },
+        [&](const Eigen::VectorXd& theta) { return problem.linearise(theta); },
+        numerics::LevenbergMarquardtOptions{options.tolerance, options.max_iterations});
+    if (!std::isfinite(refined.initial_cost)) {
+        fail(record.context, record.data_name(),
+             "give an equation-error model whose simulation is not finite; the data do not fit m pdd + d pd + k p = f");
+    }
+    if (!equation_error_start && !refined.converged) {
+        std::ostringstream problem_text;
+        problem_text << "do not determine a positive mass: the equation-error estimate is m = " << step1.impedance.mass
+                     << " and the output-error fit started from a mass search did not converge in "
+                     << refined.iterations << " iterations (the inertia is not excited, or the noise is too large)";
+        fail(record.context, record.data_name(), problem_text.str());
+    }
+    return fit_from(step1, equation_error_start, problem.model_of(refined.parameters), refined,
+                    record.position.size());
+}
+
+/// Enough samples, equal lengths, and a force that sets the scale of m, d and k.
+inline void check_record(const AxisRecord& record)
+{
+    const Index samples = record.position.size();
+    if (samples < identification_minimum_samples) {
+        fail(record.context, record.position_name, "needs at least " + std::to_string(identification_minimum_samples) +
+                                                       " samples, got " + std::to_string(samples));
+    }
+    if (record.force.size() != samples) {
+        fail(record.context, record.force_name, "must have as many samples as " + record.position_name + " (" +
+                                                    std::to_string(samples) + "), got " +
+                                                    std::to_string(record.force.size()));
+    }
+    if (!(record.force.cwiseAbs().maxCoeff() > 0.0)) {
+        fail(record.context, record.force_name, "is identically zero: the scale of m, d and k is not determined");
+    }
+}
+
+/// Columns [p, P1, P2, 1, t] and right-hand side F2, integrals by the cumulative trapezoidal rule.
+inline EquationErrorRegression equation_error_regression(const AxisRecord& record, double sample_period)
+{
+    const Eigen::VectorXd& position = record.position;
+    const Eigen::VectorXd& force = record.force;
+    const Index samples = position.size();
+    const double half_period = 0.5 * sample_period;
+    EquationErrorRegression regression{Eigen::MatrixXd(samples, 5), Eigen::VectorXd(samples)};
+    double p1 = 0.0, p2 = 0.0, f1 = 0.0, f2 = 0.0;  // P1, P2, F1 = int f, F2 at sample n
+    for (Index n = 0; n < samples; ++n) {
+        if (n > 0) {
+            const double p1_next = p1 + half_period * (position(n - 1) + position(n));
+            const double f1_next = f1 + half_period * (force(n - 1) + force(n));
+            p2 += half_period * (p1 + p1_next);
+            f2 += half_period * (f1 + f1_next);
+            p1 = p1_next;
+            f1 = f1_next;
+        }
+        regression.regressor.row(n) << position(n), p1, p2, 1.0, static_cast<double>(n) * sample_period;
+        regression.rhs(n) = f2;
+    }
+    return regression;
+}
+
+/// Least squares on columns scaled to unit norm (column equilibration), so that the QR's
+/// condition number measures excitation rather than units.
+class EquilibratedLeastSquares {
+public:
+    explicit EquilibratedLeastSquares(const Eigen::MatrixXd& regressor)
+        : norms_(regressor.colwise().norm().transpose())
+    {
+        if (norms_.minCoeff() > 0.0 && norms_.allFinite()) {
+            qr_.compute(regressor * norms_.cwiseInverse().asDiagonal());
+        }
+    }
+
+    /// false when a column is zero or not finite (the QR is then not computed).
+    bool usable() const { return norms_.minCoeff() > 0.0 && norms_.allFinite(); }
+
+    /// Condition number of the equilibrated regressor (largest / smallest singular value of R).
+    double condition_number() const
+    {
+        const Index columns = norms_.size();
+        // Dynamic-size R: a fixed 5x5 SVD trips GCC 12's -Warray-bounds false positives.
+        const Eigen::MatrixXd r = qr_.matrixQR().topLeftCorner(columns, columns).triangularView<Eigen::Upper>();
+        const Eigen::VectorXd singular_values = Eigen::JacobiSVD<Eigen::MatrixXd>(r).singularValues();
+        return singular_values(0) / singular_values(columns - 1);
+    }
+
+    Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return qr_.solve(rhs).cwiseQuotient(norms_); }
+
+private:
+    Eigen::VectorXd norms_;
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr_;
+};
+
+/// Step 1: the regression's solution (m, d, k, a, c); m may be <= 0 (low signal-to-noise ratio).
+/// Throws when the regression is singular (unexcited data) or its solution is not finite.
+inline EquationErrorEstimate equation_error_estimate(const EquationErrorRegression& regression,
+                                                     const AxisRecord& record)
+{
+    const char* const unexcited =
+        "do not excite the dynamics: the equation-error regression [p, int p, int int p, 1, t] is singular "
+        "(constant or zero motion, or motion that does not separate m, d and k)";
+    const EquilibratedLeastSquares least_squares(regression.regressor);
+    if (!least_squares.usable() || !regression.rhs.allFinite()) {
+        fail(record.context, record.data_name(), unexcited);
+    }
+    const double condition_number = least_squares.condition_number();
+    if (!(condition_number < 1e10)) {
+        std::ostringstream problem;
+        problem << unexcited << "; condition number " << condition_number;
+        fail(record.context, record.data_name(), problem.str());
+    }
+    const Eigen::VectorXd solution = least_squares.solve(regression.rhs);
+    if (!solution.allFinite()) {
+        fail(record.context, record.data_name(), "give an equation-error estimate that is not finite");
+    }
+    return {{solution(0), solution(1), solution(2)}, solution(3), solution(4)};
+}
+
+/// (m, d, k, a, c) -> the model with p0 = -a / m, v0 = -(c + d p0) / m (m != 0).
+inline AxisModel model_from_regression(double mass, double damping, double stiffness, double offset, double slope)
+{
+    const double initial_position = -offset / mass;
+    const double initial_velocity = -(slope + damping * initial_position) / mass;
+    return {{mass, damping, stiffness}, initial_position, initial_velocity};
+}
+
+/// The mass that centres the search grid: |m| of step 1, or, if that is 0, |k| / omega^2 at the
+/// geometric mean of the record's lowest and the Nyquist frequency. Throws when both are 0.
+inline double mass_search_reference(const EquationErrorEstimate& step1, const AxisRecord& record,
+                                    double sample_period)
+{
+    constexpr double pi = 3.14159265358979323846;
+    double reference = std::abs(step1.impedance.mass);
+    if (!(reference > 0.0)) {
+        const double lowest = 2.0 * pi / (static_cast<double>(record.position.size()) * sample_period);
+        const double nyquist = pi / sample_period;
+        reference = std::abs(step1.impedance.stiffness) / (lowest * nyquist);
+    }
+    if (!(reference > 0.0) || !std::isfinite(reference)) {
+        fail(record.context, record.data_name(), "do not determine the scale of the mass: step 1 gives m = 0 and k = 0");
+    }
+    return reference;
+}
+
+/// Step 2's start when step 1 gives no positive mass (see the file comment). For a fixed m the
+/// regression F2 - m p = d P1 + k P2 + a + c t is linear in the other unknowns, and its solution
+/// is affine in m: beta(m) = beta_f - m beta_p. Every mass m_j = m_ref 2^(j/2), j = -40 .. 40,
+/// gets its least-squares d, k and initial state; the candidate with the smallest output error
+/// is returned. Throws when no candidate gives a finite simulation.
+inline AxisModel mass_search_start(const EquationErrorRegression& regression, const EquationErrorEstimate& step1,
+                                   const OutputErrorProblem& problem, const AxisRecord& record, double sample_period)
+{
+    const EquilibratedLeastSquares others(regression.regressor.rightCols(4));
+    const Eigen::VectorXd beta_f = others.solve(regression.rhs);
+    const Eigen::VectorXd beta_p = others.solve(regression.regressor.col(0));
+    const double reference = mass_search_reference(step1, record, sample_period);
+    AxisModel best;
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (int j = -40; j <= 40; ++j) {
+        const double mass = reference * std::exp2(0.5 * static_cast<double>(j));
+        const Eigen::VectorXd beta = beta_f - mass * beta_p;
+        const AxisModel candidate = model_from_regression(mass, beta(0), beta(1), beta(2), beta(3));
+        const Eigen::VectorXd theta = problem.parameters_of(candidate);
+        const double cost = theta.allFinite() ? problem.cost(theta) : std::numeric_limits<double>::infinity();
+        if (cost < best_cost) {
+            best_cost = cost;
+            best = problem.model_of(theta);
+        }
+    }
+    if (!std::isfinite(best_cost)) {
+        fail(record.context, record.data_name(),
+             "do not determine a positive mass: step 1 gives m <= 0 and no positive mass gives a finite simulation");
+    }
+    return best;
+}
+
+/// The public result from both steps' estimates.
+inline ImpedanceFit fit_from(const EquationErrorEstimate& step1, bool equation_error_start, const AxisModel& estimate,
+                             const numerics::LevenbergMarquardtResult& refined, Index samples)
+{
+    const double count = static_cast<double>(samples);
+    ImpedanceFit fit;
+    fit.mass = estimate.impedance.mass;
+    fit.damping = estimate.impedance.damping;
+    fit.stiffness = estimate.impedance.stiffness;
+    fit.initial_position = estimate.initial_position;
+    fit.initial_velocity = estimate.initial_velocity;
+    fit.mean_squared_output_error = refined.cost / count;
+    fit.iterations = refined.iterations;
+    fit.converged = refined.converged;
+    fit.equation_error = step1.impedance;
+    fit.equation_error_start = equation_error_start;
+    fit.equation_error_mean_squared_output_error =
+        equation_error_start ? refined.initial_cost / count : std::numeric_limits<double>::infinity();
+    return fit;
+}
+
+}  // namespace detail
 }  // namespace coopdyn

@@ -1,17 +1,40 @@
 /// \file
-/// \brief Exact discretisation and simulation of one axis of the apparent impedance,
-/// m pdd + d pd + k p = f (the 1-DOF projection of (52), docs/analysis.md), on a uniform sample
-/// grid, with the output error's Gauss-Newton normal equations: the model the identification
-/// (identification.hpp) fits.
+/// \brief One axis of the apparent impedance, m pdd + d pd + k p = f (the 1-DOF projection of
+/// (52), docs/analysis.md), discretised exactly on a uniform sample grid together with the
+/// derivatives of the discretisation with respect to (m, d, k), and run over a record: the model
+/// that the identification (identification.hpp) fits.
+///
+/// With x = (p, pd), x' = A x + B f, A = [[0, 1], [-k/m, -d/m]], B = [0; 1/m], and the force
+/// interpolated between samples by the polynomial through a window of samples, one sample period
+/// is exactly (numerics/linear_discretization.hpp)
+///
+///     x[n+1] = Phi x[n] + W f_window(n).
+///
+/// Differentiating this recurrence gives the exact derivatives of the simulated output, which are
+/// the columns of the output-error Jacobian:
+///
+///     s_theta[n+1] = Phi s_theta[n] + (dPhi/dtheta) x[n] + (dW/dtheta) f_window(n),  theta = m, d, k,
+///     dx[n] / d(p0, v0) = Phi^n  (the same recurrence without the last two terms).
+///
+/// dPhi/dtheta and dW/dtheta are read off the exact discretisation of the forward-sensitivity
+/// system of the ODE, s_theta' = A s_theta + (dA/dtheta) x + (dB/dtheta) f: with the states
+/// [x; s_m; s_d; s_k] its matrix is block lower triangular with A on the diagonal, so its
+/// transition matrix is [[Phi, 0], [dPhi/dtheta, Phi]] block by block and its input matrix
+/// [W; dW/dtheta].
 #pragma once
 
-#include "coopdyn/numerics/matrix_exponential.hpp"
+#include "coopdyn/numerics/levenberg_marquardt.hpp"
+#include "coopdyn/numerics/linear_discretization.hpp"
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
+#include <optional>
+#include <vector>
 
 namespace coopdyn {
 
@@ -24,7 +47,8 @@ enum class ForceInterpolation {
 
 namespace detail {
 
-/// Number of force samples that define the interpolant on one sample interval.
+/// Number of force samples that define the interpolant on one sample interval; 0 for a value
+/// that is not a ForceInterpolation.
 inline int interpolation_points(ForceInterpolation interpolation) noexcept
 {
     switch (interpolation) {
@@ -32,39 +56,68 @@ inline int interpolation_points(ForceInterpolation interpolation) noexcept
     case ForceInterpolation::linear: return 2;
     case ForceInterpolation::cubic: return 4;
     }
-    return 4;
+    return 0;
 }
 
-/// Exact discretisation, over one sample period, of the model x' = A x + B f (x = [p; v]) together
-/// with its sensitivities s_m, s_d, s_k (z = [x; s_m; s_d; s_k], 8 states) for a polynomial force
-/// interpolated through `points` samples. One step: z[n+1] = transition z[n] + input[v] f_window,
-/// where the window starts at sample n - v (v = 0, except for cubic: 1 inside, 0 on the first
-/// interval, 2 on the last).
-struct ImpedanceDiscretization {
-    int points = 4;
-    int variants = 3;
-    std::array<double, 64> transition{};                ///< 8x8, row-major
-    std::array<std::array<double, 32>, 3> input{};      ///< per variant: 8 x points, row-major (stride 4)
+/// A 2-row matrix multiplying a window of at most four force samples.
+using WindowMatrix = Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::ColMajor, 2, 4>;
+
+/// The input matrix W of one window placement with its derivatives dW/dm, dW/dd, dW/dk.
+struct WindowInput {
+    WindowMatrix value;
+    std::array<WindowMatrix, 3> derivative;
 };
 
-/// Fills `out` for (m, d, k) and period T. Returns false (out unusable) when m <= 0 or the
-/// exponential is not finite.
-inline bool discretize_impedance(double mass, double damping, double stiffness, double sample_period,
-                                 ForceInterpolation interpolation, ImpedanceDiscretization& out)
+/// The exact recurrence of one sample period with the derivatives of its matrices with respect
+/// to (m, d, k) (see the file comment).
+struct DiscreteImpedance {
+    Eigen::Matrix2d transition = Eigen::Matrix2d::Identity();  ///< Phi = exp(A T)
+    std::array<Eigen::Matrix2d, 3> transition_derivative{};    ///< dPhi/dm, dPhi/dd, dPhi/dk
+    Eigen::Index points = 4;                                   ///< force samples per window
+    std::vector<WindowInput> inputs;                           ///< one per window placement
+};
+
+/// The sample window of the interval [nT, (n+1)T): samples start .. start + points - 1, and the
+/// placement of those samples relative to n (an index into DiscreteImpedance::inputs).
+struct ForceWindow {
+    Eigen::Index start = 0;
+    std::size_t placement = 0;
+};
+
+/// The window of interval n of a record of `samples`. Zero-order hold and linear: samples from n
+/// on (one placement). Cubic: the centred window n - 1 .. n + 2, made one-sided on the first and
+/// the last interval where the centred one would leave the record; placement v has the sample
+/// offsets j - v, j = 0 .. 3, relative to n.
+inline ForceWindow force_window(Eigen::Index points, Eigen::Index n, Eigen::Index samples) noexcept
 {
-    if (!(mass > 0.0) || !std::isfinite(mass) || !std::isfinite(damping) || !std::isfinite(stiffness)) {
-        return false;
+    if (points < 4) {
+        return {n, 0};
     }
-    const int points = interpolation_points(interpolation);
-    const Eigen::Index size = 8 + points;
-    const double t = sample_period;
+    const Eigen::Index start = std::clamp<Eigen::Index>(n - 1, 0, samples - 4);
+    return {start, static_cast<std::size_t>(n - start)};
+}
+
+/// Offsets of the samples of window placement `placement` relative to n: j - placement.
+inline Eigen::VectorXd window_nodes(Eigen::Index points, Eigen::Index placement)
+{
+    Eigen::VectorXd nodes(points);
+    for (Eigen::Index j = 0; j < points; ++j) {
+        nodes(j) = static_cast<double>(j - placement);
+    }
+    return nodes;
+}
+
+/// The forward-sensitivity system (see the file comment): states [x; s_m; s_d; s_k], matrix
+/// [[A, 0, 0, 0], [A_m, A, 0, 0], [A_d, 0, A, 0], [A_k, 0, 0, A]], input [B; B_m; 0; 0].
+struct SensitivitySystem {
+    Eigen::MatrixXd matrix = Eigen::MatrixXd::Zero(8, 8);
+    Eigen::MatrixXd input = Eigen::MatrixXd::Zero(8, 1);
+};
+
+inline SensitivitySystem sensitivity_system(double mass, double damping, double stiffness)
+{
     const double inverse_mass = 1.0 / mass;
     const double inverse_mass_squared = inverse_mass * inverse_mass;
-
-    // Continuous augmented matrix times T. States: [x; s_m; s_d; s_k; u_0 .. u_{q-1}], where
-    // u_i = T^i d^i f / dt^i (derivatives in the sample-normalised time sigma = t / T), so the
-    // input chain is u_i' = u_{i+1} / T and f = u_0.
-    Eigen::MatrixXd z = Eigen::MatrixXd::Zero(size, size);
     Eigen::Matrix2d a;
     a << 0.0, 1.0, -stiffness * inverse_mass, -damping * inverse_mass;
     Eigen::Matrix2d a_mass;  // dA/dm
@@ -73,181 +126,156 @@ inline bool discretize_impedance(double mass, double damping, double stiffness, 
     a_damping << 0.0, 0.0, 0.0, -inverse_mass;
     Eigen::Matrix2d a_stiffness;  // dA/dk
     a_stiffness << 0.0, 0.0, -inverse_mass, 0.0;
+
+    SensitivitySystem system;
     for (Eigen::Index block = 0; block < 4; ++block) {
-        z.block<2, 2>(2 * block, 2 * block) = a * t;
+        system.matrix.block<2, 2>(2 * block, 2 * block) = a;
     }
-    z.block<2, 2>(2, 0) = a_mass * t;
-    z.block<2, 2>(4, 0) = a_damping * t;
-    z.block<2, 2>(6, 0) = a_stiffness * t;
-    z(1, 8) = inverse_mass * t;            // B = [0; 1/m]
-    z(3, 8) = -inverse_mass_squared * t;   // dB/dm = [0; -1/m^2]
-    for (Eigen::Index i = 0; i + 1 < points; ++i) {
-        z(8 + i, 9 + i) = 1.0;
-    }
-    const Eigen::MatrixXd exponential = numerics::matrix_exponential(z);
-    if (!exponential.allFinite()) {
-        return false;
-    }
-    // z[n+1] = Phi z[n] + Psi u(0); u(0) = C f_window, C = diag(i!) V^-1 with V_ji = node_j^i
-    // the Vandermonde matrix of the window's nodes (in sample units relative to sample n).
-    const Eigen::MatrixXd psi = exponential.topRightCorner(8, points);
-    out.points = points;
-    out.variants = interpolation == ForceInterpolation::cubic ? 3 : 1;
-    for (Eigen::Index row = 0; row < 8; ++row) {
-        for (Eigen::Index column = 0; column < 8; ++column) {
-            out.transition[static_cast<std::size_t>(8 * row + column)] = exponential(row, column);
-        }
-    }
-    for (int variant = 0; variant < out.variants; ++variant) {
-        Eigen::MatrixXd vandermonde(points, points);
-        for (Eigen::Index j = 0; j < points; ++j) {
-            const double node = static_cast<double>(j - variant);
-            double power = 1.0;
-            for (Eigen::Index i = 0; i < points; ++i) {
-                vandermonde(j, i) = power;
-                power *= node;
-            }
-        }
-        Eigen::MatrixXd coefficients = vandermonde.fullPivLu().inverse();
-        double factorial = 1.0;
-        for (Eigen::Index i = 0; i < points; ++i) {
-            factorial *= i > 0 ? static_cast<double>(i) : 1.0;
-            coefficients.row(i) *= factorial;
-        }
-        const Eigen::MatrixXd gamma = psi * coefficients;
-        auto& input = out.input[static_cast<std::size_t>(variant)];
-        for (Eigen::Index row = 0; row < 8; ++row) {
-            for (Eigen::Index j = 0; j < points; ++j) {
-                input[static_cast<std::size_t>(4 * row + j)] = gamma(row, j);
-            }
-        }
-    }
-    return true;
+    system.matrix.block<2, 2>(2, 0) = a_mass;
+    system.matrix.block<2, 2>(4, 0) = a_damping;
+    system.matrix.block<2, 2>(6, 0) = a_stiffness;
+    system.input(1, 0) = inverse_mass;            // B = [0; 1/m]
+    system.input(3, 0) = -inverse_mass_squared;  // dB/dm = [0; -1/m^2]
+    return system;
 }
 
-/// First sample of the force window of interval n (of `samples`), and its variant.
-inline void force_window(const ImpedanceDiscretization& model, Eigen::Index n, Eigen::Index samples,
-                         Eigen::Index& start, std::size_t& variant) noexcept
+/// The exact recurrence of m pdd + d pd + k p = f over one period T with its derivatives (see the
+/// file comment); nullopt when m <= 0, a parameter is not finite, or the recurrence is not finite.
+inline std::optional<DiscreteImpedance> discretize_impedance(double mass, double damping, double stiffness,
+                                                             double sample_period, ForceInterpolation interpolation)
 {
-    if (model.variants == 1) {
-        start = n;
-        variant = 0;
-        return;
+    if (!(mass > 0.0) || !std::isfinite(mass) || !std::isfinite(damping) || !std::isfinite(stiffness)) {
+        return std::nullopt;
     }
-    start = std::clamp<Eigen::Index>(n - 1, 0, samples - 4);
-    variant = static_cast<std::size_t>(n - start);
+    const SensitivitySystem system = sensitivity_system(mass, damping, stiffness);
+    DiscreteImpedance model;
+    model.points = interpolation_points(interpolation);
+    const numerics::PolynomialInputDiscretization exact = numerics::discretize_polynomial_input(
+        system.matrix, system.input, sample_period, static_cast<int>(model.points) - 1);
+    const bool finite = exact.transition.allFinite() &&
+                        std::all_of(exact.moments.begin(), exact.moments.end(),
+                                    [](const Eigen::MatrixXd& moment) { return moment.allFinite(); });
+    if (!finite) {
+        return std::nullopt;
+    }
+    model.transition = exact.transition.topLeftCorner<2, 2>();
+    for (Eigen::Index parameter = 0; parameter < 3; ++parameter) {
+        model.transition_derivative[static_cast<std::size_t>(parameter)] =
+            exact.transition.block<2, 2>(2 + 2 * parameter, 0);
+    }
+    const Eigen::Index placements = interpolation == ForceInterpolation::cubic ? 3 : 1;
+    for (Eigen::Index placement = 0; placement < placements; ++placement) {
+        const Eigen::MatrixXd input = numerics::interpolated_input_matrix(exact, window_nodes(model.points, placement));
+        WindowInput window{input.topRows<2>(), {}};
+        for (Eigen::Index parameter = 0; parameter < 3; ++parameter) {
+            window.derivative[static_cast<std::size_t>(parameter)] = input.middleRows<2>(2 + 2 * parameter);
+        }
+        model.inputs.push_back(window);
+    }
+    return model;
 }
 
-/// Simulated positions from (p0, v0) under `force`; writes them to `output` when not null and
-/// returns sum (p_model[n] - position[n])^2 when `position` is not null (else 0). Returns +inf
-/// when the simulation is not finite.
-inline double simulate_discretized(const ImpedanceDiscretization& model, const double* force, Eigen::Index samples,
-                                   double initial_position, double initial_velocity, const double* position,
-                                   double* output)
+/// The simulated axis' motion (p, pd) with its derivatives with respect to the five parameters
+/// that the output error is minimised over: the first row of `sensitivity` is a row of the
+/// output-error Jacobian.
+struct MotionWithSensitivities {
+    Eigen::Vector2d motion = Eigen::Vector2d::Zero();                   ///< (p, pd)
+    Eigen::Matrix<double, 2, 5> sensitivity = Eigen::Matrix<double, 2, 5>::Zero();  ///< d(p, pd)/d(m, d, k, p0, v0)
+};
+
+/// x[n+1] = Phi x[n] + W f_window.
+inline Eigen::Vector2d advance(const DiscreteImpedance& model, const Eigen::Vector2d& motion, const WindowInput& input,
+                               const Eigen::Ref<const Eigen::VectorXd>& window)
 {
-    const auto& phi = model.transition;
-    double p = initial_position;
-    double v = initial_velocity;
-    double cost = 0.0;
-    const Eigen::Index points = model.points;
+    return model.transition * motion + input.value * window;
+}
+
+/// The motion and, by the differentiated recurrence (see the file comment), its sensitivities.
+inline MotionWithSensitivities advance(const DiscreteImpedance& model, const MotionWithSensitivities& state,
+                                       const WindowInput& input, const Eigen::Ref<const Eigen::VectorXd>& window)
+{
+    MotionWithSensitivities next;
+    next.motion = advance(model, state.motion, input, window);
+    next.sensitivity = model.transition * state.sensitivity;
+    for (std::size_t parameter = 0; parameter < 3; ++parameter) {
+        next.sensitivity.col(static_cast<Eigen::Index>(parameter)) +=
+            model.transition_derivative[parameter] * state.motion + input.derivative[parameter] * window;
+    }
+    return next;
+}
+
+/// Runs the recurrence over the record: visit(n, state) at every sample n = 0 .. N-1 of `force`,
+/// starting from `state` at n = 0. `State` is the motion alone (Eigen::Vector2d) or
+/// MotionWithSensitivities.
+template <typename State, typename Visit>
+void run_over_record(const DiscreteImpedance& model, const Eigen::VectorXd& force, State state, Visit&& visit)
+{
+    const Eigen::Index samples = force.size();
     for (Eigen::Index n = 0; n < samples; ++n) {
-        if (output != nullptr) {
-            output[n] = p;
+        visit(n, state);
+        if (n + 1 < samples) {
+            const ForceWindow window = force_window(model.points, n, samples);
+            state = advance(model, state, model.inputs[window.placement], force.segment(window.start, model.points));
         }
-        if (position != nullptr) {
-            const double residual = p - position[n];
-            cost += residual * residual;
-        }
-        if (n + 1 == samples) {
-            break;
-        }
-        Eigen::Index start = 0;
-        std::size_t variant = 0;
-        force_window(model, n, samples, start, variant);
-        const auto& gamma = model.input[variant];
-        double p_next = phi[0] * p + phi[1] * v;
-        double v_next = phi[8] * p + phi[9] * v;
-        for (Eigen::Index j = 0; j < points; ++j) {
-            const double sample = force[start + j];
-            p_next += gamma[static_cast<std::size_t>(j)] * sample;
-            v_next += gamma[static_cast<std::size_t>(4 + j)] * sample;
-        }
-        p = p_next;
-        v = v_next;
     }
-    return std::isfinite(cost) && std::isfinite(p) ? cost : std::numeric_limits<double>::infinity();
 }
 
-/// Output-error cost with its Gauss-Newton normal equations: cost = sum r_n^2,
-/// normal = J^T J, gradient = J^T r, for the parameters (m, d, k[, p0, v0]) (`parameters` = 3 or 5).
-inline double output_error_normal_equations(const ImpedanceDiscretization& model, const double* force,
-                                            const double* position, Eigen::Index samples, double initial_position,
-                                            double initial_velocity, int parameters,
-                                            Eigen::Matrix<double, 5, 5>& normal, Eigen::Matrix<double, 5, 1>& gradient)
+/// The simulated positions p[n] from (p0, v0).
+inline Eigen::VectorXd simulated_positions(const DiscreteImpedance& model, const Eigen::VectorXd& force,
+                                           const Eigen::Vector2d& initial_state)
 {
-    const auto& phi = model.transition;
-    std::array<double, 8> state{initial_position, initial_velocity, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    std::array<double, 8> next{};
-    // Phi^n restricted to x: columns d x / d p0 and d x / d v0.
-    double q00 = 1.0, q01 = 0.0, q10 = 0.0, q11 = 1.0;
-    std::array<double, 15> normal_upper{};  // packed upper triangle of the 5x5 J^T J
-    std::array<double, 5> gradient_sum{};
-    std::array<double, 5> row{};
+    Eigen::VectorXd positions(force.size());
+    run_over_record(model, force, initial_state,
+                    [&](Eigen::Index n, const Eigen::Vector2d& motion) { positions(n) = motion(0); });
+    return positions;
+}
+
+/// Output error sum_n (p_model[n] - position[n])^2 from (p0, v0); +inf when it is not finite.
+inline double output_error_cost(const DiscreteImpedance& model, const Eigen::VectorXd& force,
+                                const Eigen::VectorXd& position, const Eigen::Vector2d& initial_state)
+{
     double cost = 0.0;
-    const Eigen::Index points = model.points;
-    for (Eigen::Index n = 0; n < samples; ++n) {
-        const double residual = state[0] - position[n];
+    run_over_record(model, force, initial_state, [&](Eigen::Index n, const Eigen::Vector2d& motion) {
+        const double residual = motion(0) - position(n);
         cost += residual * residual;
-        row = {state[2], state[4], state[6], q00, q01};
-        std::size_t packed = 0;
-        for (std::size_t i = 0; i < static_cast<std::size_t>(parameters); ++i) {
-            gradient_sum[i] += row[i] * residual;
-            for (std::size_t j = i; j < static_cast<std::size_t>(parameters); ++j) {
-                normal_upper[packed++] += row[i] * row[j];
-            }
-        }
-        if (n + 1 == samples) {
-            break;
-        }
-        Eigen::Index start = 0;
-        std::size_t variant = 0;
-        force_window(model, n, samples, start, variant);
-        const auto& gamma = model.input[variant];
-        for (std::size_t i = 0; i < 8; ++i) {
-            double sum = 0.0;
-            for (std::size_t j = 0; j < 8; ++j) {
-                sum += phi[8 * i + j] * state[j];
-            }
-            for (Eigen::Index j = 0; j < points; ++j) {
-                sum += gamma[4 * i + static_cast<std::size_t>(j)] * force[start + j];
-            }
-            next[i] = sum;
-        }
-        state = next;
-        const double r00 = phi[0] * q00 + phi[1] * q10;
-        const double r01 = phi[0] * q01 + phi[1] * q11;
-        const double r10 = phi[8] * q00 + phi[9] * q10;
-        const double r11 = phi[8] * q01 + phi[9] * q11;
-        q00 = r00;
-        q01 = r01;
-        q10 = r10;
-        q11 = r11;
-    }
-    normal.setZero();
-    gradient.setZero();
-    std::size_t packed = 0;
+    });
+    return std::isfinite(cost) ? cost : std::numeric_limits<double>::infinity();
+}
+
+/// The output error with its Gauss-Newton normal equations over the first `parameters` of
+/// (m, d, k, p0, v0) (3: the initial state is held fixed, or 5); cost +inf when not finite.
+inline numerics::NormalEquations output_error_normal_equations(const DiscreteImpedance& model,
+                                                               const Eigen::VectorXd& force,
+                                                               const Eigen::VectorXd& position,
+                                                               const Eigen::Vector2d& initial_state,
+                                                               Eigen::Index parameters)
+{
+    MotionWithSensitivities start;
+    start.motion = initial_state;
+    start.sensitivity.rightCols<2>().setIdentity();  // d(p0, v0)/d(p0, v0) = Phi^0
+    Eigen::Matrix<double, 5, 5> normal = Eigen::Matrix<double, 5, 5>::Zero();
+    Eigen::Matrix<double, 5, 1> gradient = Eigen::Matrix<double, 5, 1>::Zero();
+    double cost = 0.0;
+    run_over_record(model, force, start, [&](Eigen::Index n, const MotionWithSensitivities& state) {
+        const double residual = state.motion(0) - position(n);
+        const Eigen::Matrix<double, 5, 1> jacobian_row = state.sensitivity.row(0).transpose();
+        cost += residual * residual;
+        gradient += residual * jacobian_row;
+        normal += jacobian_row * jacobian_row.transpose();
+    });
+    // Copied entry by entry: a run-time-sized block of the fixed 5x5 makes GCC 12 report false
+    // -Warray-bounds once inlined at -O2/-O3.
+    numerics::NormalEquations result{cost, Eigen::MatrixXd(parameters, parameters), Eigen::VectorXd(parameters)};
     for (Eigen::Index i = 0; i < parameters; ++i) {
-        gradient(i) = gradient_sum[static_cast<std::size_t>(i)];
-        for (Eigen::Index j = i; j < parameters; ++j) {
-            normal(i, j) = normal_upper[packed];
-            normal(j, i) = normal_upper[packed];
-            ++packed;
+        result.gradient(i) = gradient(i);
+        for (Eigen::Index j = 0; j < parameters; ++j) {
+            result.normal(i, j) = normal(i, j);
         }
     }
-    if (!std::isfinite(cost) || !normal.allFinite() || !gradient.allFinite()) {
-        return std::numeric_limits<double>::infinity();
+    if (!std::isfinite(cost) || !result.normal.allFinite() || !result.gradient.allFinite()) {
+        result.cost = std::numeric_limits<double>::infinity();
     }
-    return cost;
+    return result;
 }
 
 }  // namespace detail
