@@ -23,6 +23,7 @@
 #include "coopdyn/coordination/kinematic_coordination.hpp"
 #include "coopdyn/coordination/load_distribution.hpp"
 #include "coopdyn/analysis/apparent_impedance.hpp"
+#include "coopdyn/analysis/equation_error.hpp"
 #include "coopdyn/analysis/identification.hpp"
 #include "coopdyn/analysis/impedance_discretization.hpp"
 #include "coopdyn/analysis/impedance_synthesis.hpp"

@@ -14,21 +14,17 @@
 /// InvalidArgument on bad input and computes in double whatever the input scalar type.
 ///
 /// Method (two steps):
-/// 1. Equation error. Integrating the ODE twice from t = 0 gives an equation that is linear in
-///    the unknowns and contains no derivative of the data:
+/// 1. Equation error (equation_error.hpp). Integrating the ODE twice from t = 0 gives
 ///        m p(t) + d P1(t) + k P2(t) + a + c t = F2(t),
-///    P1 = int p, P2 = int int p, F2 = int int f (cumulative trapezoidal rule), a = -m p(0),
-///    c = -m pd(0) - d p(0). Integration averages measurement noise where differentiation
-///    (central differences) would amplify it by 1/T and 1/T^2, and the initial state becomes two
-///    extra linear unknowns instead of being read from a single noisy sample. The 5-column
-///    regression is solved by Householder QR with column equilibration; its condition number
-///    detects unexcited data. The result is slightly biased (trapezoidal rule, O((omega T)^2),
-///    and integrated noise); it is the starting point of step 2. At a low signal-to-noise ratio
+///    P1 = int p, P2 = int int p, F2 = int int f, a = -m p(0), c = -m pd(0) - d p(0): linear in
+///    the unknowns, free of derivatives of the data, and solved by equilibrated QR whose
+///    condition number detects unexcited data. Slightly biased (trapezoidal rule, O((omega T)^2),
+///    and integrated noise), it is the starting point of step 2. At a low signal-to-noise ratio
 ///    the noise on p (the regressor of m) biases m towards zero and can make it non-positive;
 ///    step 2 then starts from a search over the mass instead: for each m on a logarithmic grid
 ///    (a factor 10^6 either way of |m|, 2^(1/2) apart) the regression is solved for the other
-///    unknowns with m fixed (it stays linear), and the candidate whose simulation fits the data
-///    best is the start. Identification fails only if step 2 then does not converge.
+///    unknowns with m fixed, and the candidate whose simulation fits the data best is the start.
+///    Identification fails only if step 2 then does not converge.
 /// 2. Output error. The model is simulated from an initial state (p0, v0) with the measured force
 ///    and sum_n (p_model[n] - p[n])^2 is minimised over (m, d, k) and, by default, (p0, v0), by
 ///    Levenberg-Marquardt (numerics/levenberg_marquardt.hpp). The simulation is exact for the
@@ -53,13 +49,11 @@
 #pragma once
 
 #include "coopdyn/analysis/apparent_impedance.hpp"
+#include "coopdyn/analysis/equation_error.hpp"
 #include "coopdyn/analysis/impedance_discretization.hpp"
 #include "coopdyn/config.hpp"
 #include "coopdyn/detail/validation.hpp"
 #include "coopdyn/numerics/levenberg_marquardt.hpp"
-
-#include <Eigen/QR>
-#include <Eigen/SVD>
 
 #include <array>
 #include <cmath>
@@ -68,6 +62,7 @@
 #include <sstream>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace coopdyn {
 
@@ -141,18 +136,6 @@ struct DiagonalImpedanceFit {
 };
 
 namespace detail {
-
-/// One axis' record: the validated samples, and the names that error messages give them.
-struct AxisRecord {
-    Eigen::VectorXd position;
-    Eigen::VectorXd force;
-    ErrorContext context;
-    std::string position_name;
-    std::string force_name;
-
-    /// Both series, for failures that belong to the pair ("position/force do not excite ...").
-    std::string data_name() const { return position_name + "/" + force_name; }
-};
 
 // The steps of the public entry points, defined below them.
 template <typename Derived>
@@ -347,34 +330,17 @@ struct AxisModel {
     double initial_velocity = 0.0;
 };
 
-/// Step 1's regression: columns [p, P1, P2, 1, t] and right-hand side F2 (see the file comment).
-struct EquationErrorRegression {
-    Eigen::MatrixXd regressor;
-    Eigen::VectorXd rhs;
-};
-
-/// Step 1's estimate: the regression's solution (m, d, k, a, c).
-struct EquationErrorEstimate {
-    ImpedanceParameters impedance;
-    double offset = 0.0;  ///< a = -m p0
-    double slope = 0.0;   ///< c = -m v0 - d p0
-};
-
-/// Step 2's least-squares problem for one axis (see the file comment).
 class OutputErrorProblem;
-
 inline void check_record(const AxisRecord& record);
-inline EquationErrorRegression equation_error_regression(const AxisRecord& record, double sample_period);
-inline EquationErrorEstimate equation_error_estimate(const EquationErrorRegression& regression,
-                                                     const AxisRecord& record);
+inline AxisModel model_from(const EquationErrorEstimate& estimate);
 inline AxisModel mass_search_start(const EquationErrorRegression& regression, const EquationErrorEstimate& step1,
                                    const OutputErrorProblem& problem, const AxisRecord& record, double sample_period);
-inline AxisModel model_from_regression(double mass, double damping, double stiffness, double offset, double slope);
 inline ImpedanceFit fit_from(const EquationErrorEstimate& step1, bool equation_error_start, const AxisModel& estimate,
                              const numerics::LevenbergMarquardtResult& refined, Index samples);
 
-/// theta = (m, d, k, p0, v0), or (m, d, k) with the initial state held at (p[0], 0); the cost is
-/// the output error sum_n (p_model[n] - p[n])^2, +inf where the model cannot be simulated.
+/// Step 2's least-squares problem for one axis: theta = (m, d, k, p0, v0), or (m, d, k) with the
+/// initial state held at (p[0], 0); the cost is the output error sum_n (p_model[n] - p[n])^2,
+/// +inf where the model cannot be simulated (impedance_discretization.hpp).
 class OutputErrorProblem {
 public:
     OutputErrorProblem(const AxisRecord& record, double sample_period, const IdentificationOptions& options)
@@ -438,12 +404,9 @@ inline ImpedanceFit identify_axis(const AxisRecord& record, double sample_period
     const EquationErrorRegression regression = equation_error_regression(record, sample_period);
     const EquationErrorEstimate step1 = equation_error_estimate(regression, record);
     const OutputErrorProblem problem(record, sample_period, options);
-    const bool equation_error_start = step1.impedance.mass > 0.0;
-    const AxisModel start =
-        equation_error_start
-            ? model_from_regression(step1.impedance.mass, step1.impedance.damping, step1.impedance.stiffness,
-                                    step1.offset, step1.slope)
-            : mass_search_start(regression, step1, problem, record, sample_period);
+    const bool equation_error_start = step1.mass > 0.0;
+    const AxisModel start = equation_error_start ? model_from(step1)
+                                                 : mass_search_start(regression, step1, problem, record, sample_period);
 
     const numerics::LevenbergMarquardtResult refined = numerics::levenberg_marquardt(
         problem.parameters_of(start), [&](const Eigen::VectorXd& theta) { return problem.cost(theta); },
@@ -455,7 +418,7 @@ inline ImpedanceFit identify_axis(const AxisRecord& record, double sample_period
     }
     if (!equation_error_start && !refined.converged) {
         std::ostringstream problem_text;
-        problem_text << "do not determine a positive mass: the equation-error estimate is m = " << step1.impedance.mass
+        problem_text << "do not determine a positive mass: the equation-error estimate is m = " << step1.mass
                      << " and the output-error fit started from a mass search did not converge in "
                      << refined.iterations << " iterations (the inertia is not excited, or the noise is too large)";
         fail(record.context, record.data_name(), problem_text.str());
@@ -482,132 +445,22 @@ inline void check_record(const AxisRecord& record)
     }
 }
 
-/// Columns [p, P1, P2, 1, t] and right-hand side F2, integrals by the cumulative trapezoidal rule.
-inline EquationErrorRegression equation_error_regression(const AxisRecord& record, double sample_period)
+/// The model a regression solution describes, with its initial state (m != 0).
+inline AxisModel model_from(const EquationErrorEstimate& estimate)
 {
-    const Eigen::VectorXd& position = record.position;
-    const Eigen::VectorXd& force = record.force;
-    const Index samples = position.size();
-    const double half_period = 0.5 * sample_period;
-    EquationErrorRegression regression{Eigen::MatrixXd(samples, 5), Eigen::VectorXd(samples)};
-    double p1 = 0.0, p2 = 0.0, f1 = 0.0, f2 = 0.0;  // P1, P2, F1 = int f, F2 at sample n
-    for (Index n = 0; n < samples; ++n) {
-        if (n > 0) {
-            const double p1_next = p1 + half_period * (position(n - 1) + position(n));
-            const double f1_next = f1 + half_period * (force(n - 1) + force(n));
-            p2 += half_period * (p1 + p1_next);
-            f2 += half_period * (f1 + f1_next);
-            p1 = p1_next;
-            f1 = f1_next;
-        }
-        regression.regressor.row(n) << position(n), p1, p2, 1.0, static_cast<double>(n) * sample_period;
-        regression.rhs(n) = f2;
-    }
-    return regression;
+    return {{estimate.mass, estimate.damping, estimate.stiffness}, estimate.initial_position(),
+            estimate.initial_velocity()};
 }
 
-/// Least squares on columns scaled to unit norm (column equilibration), so that the QR's
-/// condition number measures excitation rather than units.
-class EquilibratedLeastSquares {
-public:
-    explicit EquilibratedLeastSquares(const Eigen::MatrixXd& regressor)
-        : norms_(regressor.colwise().norm().transpose())
-    {
-        if (norms_.minCoeff() > 0.0 && norms_.allFinite()) {
-            qr_.compute(regressor * norms_.cwiseInverse().asDiagonal());
-        }
-    }
-
-    /// false when a column is zero or not finite (the QR is then not computed).
-    bool usable() const { return norms_.minCoeff() > 0.0 && norms_.allFinite(); }
-
-    /// Condition number of the equilibrated regressor (largest / smallest singular value of R).
-    double condition_number() const
-    {
-        const Index columns = norms_.size();
-        // Dynamic-size R: a fixed 5x5 SVD trips GCC 12's -Warray-bounds false positives.
-        const Eigen::MatrixXd r = qr_.matrixQR().topLeftCorner(columns, columns).triangularView<Eigen::Upper>();
-        const Eigen::VectorXd singular_values = Eigen::JacobiSVD<Eigen::MatrixXd>(r).singularValues();
-        return singular_values(0) / singular_values(columns - 1);
-    }
-
-    Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return qr_.solve(rhs).cwiseQuotient(norms_); }
-
-private:
-    Eigen::VectorXd norms_;
-    Eigen::HouseholderQR<Eigen::MatrixXd> qr_;
-};
-
-/// Step 1: the regression's solution (m, d, k, a, c); m may be <= 0 (low signal-to-noise ratio).
-/// Throws when the regression is singular (unexcited data) or its solution is not finite.
-inline EquationErrorEstimate equation_error_estimate(const EquationErrorRegression& regression,
-                                                     const AxisRecord& record)
-{
-    const char* const unexcited =
-        "do not excite the dynamics: the equation-error regression [p, int p, int int p, 1, t] is singular "
-        "(constant or zero motion, or motion that does not separate m, d and k)";
-    const EquilibratedLeastSquares least_squares(regression.regressor);
-    if (!least_squares.usable() || !regression.rhs.allFinite()) {
-        fail(record.context, record.data_name(), unexcited);
-    }
-    const double condition_number = least_squares.condition_number();
-    if (!(condition_number < 1e10)) {
-        std::ostringstream problem;
-        problem << unexcited << "; condition number " << condition_number;
-        fail(record.context, record.data_name(), problem.str());
-    }
-    const Eigen::VectorXd solution = least_squares.solve(regression.rhs);
-    if (!solution.allFinite()) {
-        fail(record.context, record.data_name(), "give an equation-error estimate that is not finite");
-    }
-    return {{solution(0), solution(1), solution(2)}, solution(3), solution(4)};
-}
-
-/// (m, d, k, a, c) -> the model with p0 = -a / m, v0 = -(c + d p0) / m (m != 0).
-inline AxisModel model_from_regression(double mass, double damping, double stiffness, double offset, double slope)
-{
-    const double initial_position = -offset / mass;
-    const double initial_velocity = -(slope + damping * initial_position) / mass;
-    return {{mass, damping, stiffness}, initial_position, initial_velocity};
-}
-
-/// The mass that centres the search grid: |m| of step 1, or, if that is 0, |k| / omega^2 at the
-/// geometric mean of the record's lowest and the Nyquist frequency. Throws when both are 0.
-inline double mass_search_reference(const EquationErrorEstimate& step1, const AxisRecord& record,
-                                    double sample_period)
-{
-    constexpr double pi = 3.14159265358979323846;
-    double reference = std::abs(step1.impedance.mass);
-    if (!(reference > 0.0)) {
-        const double lowest = 2.0 * pi / (static_cast<double>(record.position.size()) * sample_period);
-        const double nyquist = pi / sample_period;
-        reference = std::abs(step1.impedance.stiffness) / (lowest * nyquist);
-    }
-    if (!(reference > 0.0) || !std::isfinite(reference)) {
-        fail(record.context, record.data_name(), "do not determine the scale of the mass: step 1 gives m = 0 and k = 0");
-    }
-    return reference;
-}
-
-/// Step 2's start when step 1 gives no positive mass (see the file comment). For a fixed m the
-/// regression F2 - m p = d P1 + k P2 + a + c t is linear in the other unknowns, and its solution
-/// is affine in m: beta(m) = beta_f - m beta_p. Every mass m_j = m_ref 2^(j/2), j = -40 .. 40,
-/// gets its least-squares d, k and initial state; the candidate with the smallest output error
-/// is returned. Throws when no candidate gives a finite simulation.
+/// Step 2's start when step 1 gives no positive mass: the candidate of the mass profile
+/// (equation_error.hpp) with the smallest output error. Throws when none can be simulated.
 inline AxisModel mass_search_start(const EquationErrorRegression& regression, const EquationErrorEstimate& step1,
                                    const OutputErrorProblem& problem, const AxisRecord& record, double sample_period)
 {
-    const EquilibratedLeastSquares others(regression.regressor.rightCols(4));
-    const Eigen::VectorXd beta_f = others.solve(regression.rhs);
-    const Eigen::VectorXd beta_p = others.solve(regression.regressor.col(0));
-    const double reference = mass_search_reference(step1, record, sample_period);
     AxisModel best;
     double best_cost = std::numeric_limits<double>::infinity();
-    for (int j = -40; j <= 40; ++j) {
-        const double mass = reference * std::exp2(0.5 * static_cast<double>(j));
-        const Eigen::VectorXd beta = beta_f - mass * beta_p;
-        const AxisModel candidate = model_from_regression(mass, beta(0), beta(1), beta(2), beta(3));
-        const Eigen::VectorXd theta = problem.parameters_of(candidate);
+    for (const EquationErrorEstimate& candidate : mass_profile(regression, step1, record, sample_period)) {
+        const Eigen::VectorXd theta = problem.parameters_of(model_from(candidate));
         const double cost = theta.allFinite() ? problem.cost(theta) : std::numeric_limits<double>::infinity();
         if (cost < best_cost) {
             best_cost = cost;
@@ -635,7 +488,7 @@ inline ImpedanceFit fit_from(const EquationErrorEstimate& step1, bool equation_e
     fit.mean_squared_output_error = refined.cost / count;
     fit.iterations = refined.iterations;
     fit.converged = refined.converged;
-    fit.equation_error = step1.impedance;
+    fit.equation_error = {step1.mass, step1.damping, step1.stiffness};
     fit.equation_error_start = equation_error_start;
     fit.equation_error_mean_squared_output_error =
         equation_error_start ? refined.initial_cost / count : std::numeric_limits<double>::infinity();
