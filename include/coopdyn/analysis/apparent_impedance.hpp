@@ -34,15 +34,85 @@ template <typename Scalar> struct ApparentImpedance {
     Matrix6<Scalar> stiffness = Matrix6<Scalar>::Zero();  ///< K, exact linearisation (E3)
 };
 
+namespace detail {
+
+/// M, D and K of Theorem 2 as sums of shifted inertias: M = M_o + sum G_i M_i G_i^T (31),
+/// D = sum G_i D_i G_i^T (32), K = sum G_i diag(k_i I3, kappa_i I3) G_i^T (E3). The congruence
+/// G_i X G_i^T is the parallel-axis shift of the spatial layer (add_shifted), so the formula
+/// exists once; `Inertia` is SpatialInertia for impedance end-effectors, ArticulatedInertia for
+/// dense 6x6 blocks.
+template <typename Inertia> struct ImpedanceSums {
+    Inertia inertia;
+    Inertia damping;
+    Inertia stiffness;
+
+    /// Adds arm i's M_i, D_i and stiffness, grasped at r_i.
+    template <typename ArmInertia, typename ArmDamping, typename ArmStiffness, typename DerivedR>
+    void add_arm(const ArmInertia& arm_inertia, const ArmDamping& arm_damping, const ArmStiffness& arm_stiffness,
+                 const Eigen::MatrixBase<DerivedR>& r_i)
+    {
+        const Vector3<typename Inertia::Scalar> offset = r_i;
+        inertia.add_shifted(arm_inertia, offset);
+        damping.add_shifted(arm_damping, offset);
+        stiffness.add_shifted(arm_stiffness, offset);
+    }
+
+    ApparentImpedance<typename Inertia::Scalar> matrices() const
+    {
+        ApparentImpedance<typename Inertia::Scalar> result;
+        result.inertia = inertia.matrix();
+        result.damping = damping.matrix();
+        result.stiffness = stiffness.matrix();
+        return result;
+    }
+};
+
+/// Symmetric to a relative 1e-9 of the largest entry (on the values of autodiff scalars).
+template <typename Derived> bool is_symmetric(const Eigen::MatrixBase<Derived>& matrix)
+{
+    const auto values = values_of(matrix).eval();
+    return (values - values.transpose()).cwiseAbs().maxCoeff() <=
+           tolerance_for<typename Derived::Scalar>(1e-9) * values.cwiseAbs().maxCoeff();
+}
+
+/// Block `arm` of a 6 x 6N stack as an ArticulatedInertia, which reads its lower triangle; the
+/// block must be symmetric (asserted in debug builds).
+template <typename Derived>
+ArticulatedInertia<typename Derived::Scalar> symmetric_block(const Eigen::MatrixBase<Derived>& stack, Index arm) noexcept
+{
+    COOPDYN_ASSERT(is_symmetric(stack.template block<6, 6>(0, 6 * arm)),
+                   "apparent_impedance reads the lower triangle of symmetric 6x6 blocks");
+    return ArticulatedInertia<typename Derived::Scalar>(stack.template block<6, 6>(0, 6 * arm));
+}
+
+/// The sums of a Model of impedance end-effectors at the configuration in `data`.
+template <typename ModelType>
+ImpedanceSums<SpatialInertia<typename ModelType::Scalar>> apparent_impedance_sums(const ModelType& model,
+                                                                                  const Data<ModelType>& data) noexcept
+{
+    static_assert(is_impedance_end_effector_v<typename ModelType::EndEffectorModel>,
+                  "the apparent impedance needs impedance end-effectors (damping() and stiffness())");
+    ImpedanceSums<SpatialInertia<typename ModelType::Scalar>> sums;
+    sums.inertia = model.object().inertia(data.object_rotation);
+    for (Index i = 0; i < model.arms(); ++i) {
+        const auto& arm = model.end_effector(i);
+        sums.add_arm(model.end_effector_inertia(i), arm.damping(), arm.stiffness(), data.grasp_offsets.col(i));
+    }
+    return sums;
+}
+
+}  // namespace detail
+
 /// \brief Apparent impedance (31), (32) and exact K of the cooperative system, from dense
-/// matrices. Each sum of congruences G_i X_i G_i^T is the parallel-axis shift of the spatial
-/// layer (ArticulatedInertia::add_shifted), so the formula exists once.
+/// matrices: the same sums of shifted inertias as the Model/Data overload, on ArticulatedInertia.
 /// \param object_inertia M_o, 6x6 in {w}.
 /// \param ee_inertia 6 x 6N, the M_i side by side.
-/// \param ee_damping 6 x 6N, the D_i = diag(d_i I3, delta_i I3) side by side.
-/// \param ee_stiffness 6 x 6N, diag(k_i I3, kappa_i I3) side by side.
+/// \param ee_damping 6 x 6N, the D_i side by side (diag(d_i I3, delta_i I3) in (1)).
+/// \param ee_stiffness 6 x 6N, the linearised stiffnesses side by side (diag(k_i I3, kappa_i I3)).
 /// \param r 3 x N grasp offsets in {w}.
-/// Every 6x6 block is symmetric (only its lower triangle is read).
+/// Precondition: every 6x6 block is symmetric, as the inertia, damping and stiffness of (1) are
+/// (asserted in debug builds): ArticulatedInertia reads the lower triangle, so the upper triangle
+/// of a non-symmetric block would be ignored. Symmetric blocks may be fully coupled.
 template <typename DerivedObject, typename DerivedInertia, typename DerivedDamping, typename DerivedStiffness,
           typename DerivedR>
 ApparentImpedance<typename DerivedObject::Scalar>
@@ -51,25 +121,16 @@ apparent_impedance(const Eigen::MatrixBase<DerivedObject>& object_inertia,
                    const Eigen::MatrixBase<DerivedDamping>& ee_damping,
                    const Eigen::MatrixBase<DerivedStiffness>& ee_stiffness, const Eigen::MatrixBase<DerivedR>& r) noexcept
 {
-    using Scalar = typename DerivedObject::Scalar;
-    using Inertia = ArticulatedInertia<Scalar>;
     const Index arms = r.cols();
     COOPDYN_ASSERT(ee_inertia.cols() == 6 * arms && ee_damping.cols() == 6 * arms && ee_stiffness.cols() == 6 * arms,
                    "per-arm matrices must be 6 x 6N");
-    Inertia inertia(object_inertia.template topLeftCorner<6, 6>());
-    Inertia damping;
-    Inertia stiffness;
+    detail::ImpedanceSums<ArticulatedInertia<typename DerivedObject::Scalar>> sums;
+    sums.inertia = detail::symmetric_block(object_inertia, 0);
     for (Index i = 0; i < arms; ++i) {
-        const Vector3<Scalar> r_i = r.col(i).template head<3>();
-        inertia.add_shifted(Inertia(ee_inertia.template block<6, 6>(0, 6 * i)), r_i);
-        damping.add_shifted(Inertia(ee_damping.template block<6, 6>(0, 6 * i)), r_i);
-        stiffness.add_shifted(Inertia(ee_stiffness.template block<6, 6>(0, 6 * i)), r_i);
+        sums.add_arm(detail::symmetric_block(ee_inertia, i), detail::symmetric_block(ee_damping, i),
+                     detail::symmetric_block(ee_stiffness, i), r.col(i));
     }
-    ApparentImpedance<Scalar> result;
-    result.inertia = inertia.matrix();
-    result.damping = damping.matrix();
-    result.stiffness = stiffness.matrix();
-    return result;
+    return sums.matrices();
 }
 
 /// \brief Apparent impedance of a Model of impedance end-effectors at the configuration in
@@ -83,25 +144,7 @@ template <typename ModelType>
 ApparentImpedance<typename ModelType::Scalar> apparent_impedance(const ModelType& model,
                                                                  const Data<ModelType>& data) noexcept
 {
-    using Scalar = typename ModelType::Scalar;
-    static_assert(is_impedance_end_effector_v<typename ModelType::EndEffectorModel>,
-                  "the apparent impedance needs impedance end-effectors (damping() and stiffness())");
-    // M_o + sum G_i M_i G_i^T (31), sum G_i D_i G_i^T (32), sum G_i diag(k_i I3, kappa_i I3) G_i^T (E3).
-    SpatialInertia<Scalar> inertia = model.object().inertia(data.object_rotation);
-    SpatialInertia<Scalar> damping;
-    SpatialInertia<Scalar> stiffness;
-    for (Index i = 0; i < model.arms(); ++i) {
-        const auto& arm = model.end_effector(i);
-        const Vector3<Scalar> r_i = data.grasp_offsets.col(i);
-        inertia.add_shifted(arm.inertia(), r_i);
-        damping.add_shifted(arm.damping(), r_i);
-        stiffness.add_shifted(arm.stiffness(), r_i);
-    }
-    ApparentImpedance<Scalar> result;
-    result.inertia = inertia.matrix();
-    result.damping = damping.matrix();
-    result.stiffness = stiffness.matrix();
-    return result;
+    return detail::apparent_impedance_sums(model, data).matrices();
 }
 
 /// \brief Exact nonlinear restoring wrench h_o^K(x_o) = sum_i G_i h_i^K(x_i(x_o), x_i^d) at the
@@ -162,16 +205,17 @@ Vector6<typename ModelType::Scalar> reduced_model_acceleration(
 }
 
 /// \brief Storage function of Lemma 1 ((47) with gravity compensated, docs/analysis.md):
-/// V = 1/2 xdot_o^T M xdot_o + sum_i U_i, at the state in `data`, for the setpoint poses.
+/// V = 1/2 xdot_o^T M xdot_o + sum_i U_i, at the state in `data`, for the setpoint poses: the
+/// kinetic energy of the apparent inertia M (31) plus spring_potential_energy (the U_i of
+/// ImpedanceEndEffector::potential_energy).
 template <typename ModelType>
 typename ModelType::Scalar storage_function(
     const ModelType& model, const Data<ModelType>& data,
     const Setpoints<typename ModelType::Scalar, ModelType::arms_at_compile_time>& setpoints) noexcept
 {
     using Scalar = typename ModelType::Scalar;
-    const Matrix6<Scalar> inertia = apparent_impedance(model, data).inertia;
-    const auto& twist = data.object_state.twist;
-    return Scalar(0.5) * twist.dot(inertia * twist) + spring_potential_energy(model, data, setpoints);
+    return detail::apparent_impedance_sums(model, data).inertia.kinetic_energy(Motion<Scalar>::from(data.object_state.twist)) +
+           spring_potential_energy(model, data, setpoints);
 }
 
 }  // namespace coopdyn

@@ -89,12 +89,11 @@ inline Matrix6<double> unit_translational_contribution(const Vector3<double>& r_
     return CentralInertia<double>(1.0, Symmetric3<double>::Zero()).shifted(r_i).matrix();
 }
 
-/// R = G_i diag(0, I3) G_i^T = diag(0, I3): the object matrix of a unit rotational gain.
+/// R = G_i diag(0, I3) G_i^T = diag(0, I3): the object matrix of a unit rotational gain (a
+/// massless inertia is unchanged by the shift, whatever r_i).
 inline Matrix6<double> unit_rotational_contribution()
 {
-    Matrix6<double> unit = Matrix6<double>::Zero();
-    unit.bottomRightCorner<3, 3>().setIdentity();
-    return unit;
+    return CentralInertia<double>(0.0, Symmetric3<double>::Identity()).matrix();
 }
 
 template <typename ModelType> void require_impedance_model()
@@ -103,6 +102,7 @@ template <typename ModelType> void require_impedance_model()
                   "impedance synthesis needs impedance end-effectors (scalar damping and stiffness gains)");
 }
 
+/// Gains for every arm of the model, each non-negative and finite (InvalidArgument naming the arm).
 template <typename ModelType>
 void require_gains_for(const ModelType& model, const SynthesisResult<double>& gains)
 {
@@ -110,6 +110,10 @@ void require_gains_for(const ModelType& model, const SynthesisResult<double>& ga
         fail("impedance synthesis", "gains",
              "were synthesized for " + std::to_string(gains.translational.size()) + " arms, the model has " +
                  std::to_string(model.arms()));
+    }
+    for (Index i = 0; i < model.arms(); ++i) {
+        require_non_negative(gains.translational(i), argument_context("impedance synthesis", i), "gains.translational");
+        require_non_negative(gains.rotational(i), argument_context("impedance synthesis", i), "gains.rotational");
     }
 }
 
@@ -132,14 +136,15 @@ std::vector<typename ModelType::ArmType> arms_with_gains(const ModelType& model,
     return arms;
 }
 
-inline void require_achievable(const SynthesisResult<double>& gains, const std::string& parameter)
+/// `matrix`: "stiffness" or "damping", the object matrix the gains were synthesized for.
+inline void require_achievable(const SynthesisResult<double>& gains, const std::string& matrix)
 {
     if (!gains.achievable) {
         std::ostringstream problem;
-        problem << "do not reproduce the requested object matrix (relative residual " << gains.relative_residual
-                << " > tolerance " << gains.tolerance
-                << "); use arms_with_stiffness/arms_with_damping to apply the closest gains deliberately";
-        fail("impedance synthesis", parameter, problem.str());
+        problem << "do not reproduce the requested object " << matrix << " (relative residual "
+                << gains.relative_residual << " > tolerance " << gains.tolerance << "); use arms_with_" << matrix
+                << " to apply the closest gains deliberately";
+        fail("impedance synthesis", "gains", problem.str());
     }
 }
 
@@ -151,8 +156,8 @@ inline void require_achievable(const SynthesisResult<double>& gains, const std::
 /// \param target 6x6 desired object stiffness K (or damping D), in {w} about the centre of mass.
 /// \param tolerance relative Frobenius residual up to which the target counts as achievable.
 /// \return gains, achieved matrix, residual and the verdict; see the file comment.
-/// \throws InvalidModel when r is not 3 x N (N >= 1) or not finite, the target is not 6x6 or not
-///         finite, or the tolerance is not positive.
+/// \throws InvalidArgument when r is not 3 x N (N >= 1) or not finite, the target is not 6x6 or
+///         not finite, or the tolerance is not positive.
 template <typename DerivedR, typename DerivedTarget>
 SynthesisResult<double> synthesize_gains(const Eigen::MatrixBase<DerivedR>& r,
                                          const Eigen::MatrixBase<DerivedTarget>& target, double tolerance = 1e-9)
@@ -198,6 +203,20 @@ SynthesisResult<double> synthesize_gains(const Eigen::MatrixBase<DerivedR>& r,
     return result;
 }
 
+namespace detail {
+/// synthesize_gains at the grasp offsets of `data`: stiffness and damping are the same fit (the
+/// file comment), so both entry points are this one.
+template <typename ModelType, typename DerivedTarget>
+SynthesisResult<double> synthesize_at(const ModelType& model, const Data<ModelType>& data,
+                                      const Eigen::MatrixBase<DerivedTarget>& target, double tolerance)
+{
+    require_impedance_model<ModelType>();
+    COOPDYN_ASSERT(data.arms() == model.arms(), "Data was built for another model");
+    (void)model;
+    return synthesize_gains(data.grasp_offsets, target, tolerance);
+}
+}  // namespace detail
+
 /// \brief Per-arm stiffness gains k_i, kappa_i (all >= 0) that give the object the apparent
 /// stiffness `target` (K of Theorem 2 with E3; symmetric 6x6 in {w} about the centre of mass) at
 /// the grasp configuration in `data`; see synthesize_gains and the file comment.
@@ -205,10 +224,7 @@ template <typename ModelType, typename DerivedTarget>
 SynthesisResult<double> synthesize_stiffness(const ModelType& model, const Data<ModelType>& data,
                                              const Eigen::MatrixBase<DerivedTarget>& target, double tolerance = 1e-9)
 {
-    detail::require_impedance_model<ModelType>();
-    COOPDYN_ASSERT(data.arms() == model.arms(), "Data was built for another model");
-    (void)model;
-    return synthesize_gains(data.grasp_offsets, target, tolerance);
+    return detail::synthesize_at(model, data, target, tolerance);
 }
 
 /// \brief Per-arm damping gains d_i, delta_i (all >= 0) that give the object the apparent damping
@@ -217,10 +233,7 @@ template <typename ModelType, typename DerivedTarget>
 SynthesisResult<double> synthesize_damping(const ModelType& model, const Data<ModelType>& data,
                                            const Eigen::MatrixBase<DerivedTarget>& target, double tolerance = 1e-9)
 {
-    detail::require_impedance_model<ModelType>();
-    COOPDYN_ASSERT(data.arms() == model.arms(), "Data was built for another model");
-    (void)model;
-    return synthesize_gains(data.grasp_offsets, target, tolerance);
+    return detail::synthesize_at(model, data, target, tolerance);
 }
 
 /// \brief Damping matrix that gives every mode of (M, K) the damping ratio zeta (classical
@@ -232,7 +245,7 @@ SynthesisResult<double> synthesize_damping(const ModelType& model, const Data<Mo
 /// \param inertia symmetric positive definite 6x6 M (e.g. (31)).
 /// \param stiffness symmetric positive semi-definite 6x6 K.
 /// \param damping_ratio zeta >= 0.
-/// \throws InvalidModel on a non-symmetric or indefinite M or K, or a negative zeta.
+/// \throws InvalidArgument on a non-symmetric or indefinite M or K, or a negative zeta.
 inline Matrix6<double> classical_damping(const Matrix6<double>& inertia, const Matrix6<double>& stiffness,
                                          double damping_ratio)
 {
@@ -262,8 +275,8 @@ inline Matrix6<double> classical_damping(const ApparentImpedance<double>& impeda
 }
 
 /// \brief The model's arms with the synthesized stiffness gains k_i, kappa_i (whether or not the
-/// target was achievable), to build a new Model from. Throws InvalidModel on an arm-count
-/// mismatch.
+/// target was achievable), to build a new Model from. Throws InvalidArgument on an arm-count
+/// mismatch or a negative gain (naming the arm).
 template <typename ModelType>
 std::vector<typename ModelType::ArmType> arms_with_stiffness(const ModelType& model,
                                                              const SynthesisResult<double>& gains)
@@ -285,19 +298,20 @@ std::vector<typename ModelType::ArmType> arms_with_damping(const ModelType& mode
 }
 
 /// \brief A copy of `model` with the synthesized stiffness gains (same object, grasp, gravity).
-/// \throws InvalidModel when the synthesis was not achievable (use arms_with_stiffness to apply
-///         closest-fit gains deliberately) or was made for another number of arms.
+/// \throws InvalidArgument ('gains') when the synthesis was not achievable (use
+///         arms_with_stiffness to apply closest-fit gains deliberately), was made for another
+///         number of arms, or has a negative gain (naming the arm).
 template <typename ModelType> ModelType with_stiffness(const ModelType& model, const SynthesisResult<double>& gains)
 {
-    detail::require_achievable(gains, "stiffness gains");
+    detail::require_achievable(gains, "stiffness");
     return ModelType(model.object(), arms_with_stiffness(model, gains), model.gravity());
 }
 
 /// \brief A copy of `model` with the synthesized damping gains (same object, grasp, gravity).
-/// \throws InvalidModel as with_stiffness.
+/// \throws InvalidArgument as with_stiffness.
 template <typename ModelType> ModelType with_damping(const ModelType& model, const SynthesisResult<double>& gains)
 {
-    detail::require_achievable(gains, "damping gains");
+    detail::require_achievable(gains, "damping");
     return ModelType(model.object(), arms_with_damping(model, gains), model.gravity());
 }
 

@@ -47,9 +47,9 @@ Vector6<typename ModelType::Scalar> tracking_object_wrench(
     using Scalar = typename ModelType::Scalar;
     const auto& object = model.object();
     const Matrix3<Scalar> rotation = desired_object.pose.orientation.toRotationMatrix();
-    const Vector6<Scalar> inertial =
-        (object.inertia(rotation) * Motion<Scalar>::from(desired_object_acceleration)).vector();
-    return inertial + object.coriolis_wrench(object.rotational_inertia(rotation), desired_object.twist) +
+    const CentralInertia<Scalar> inertia = object.inertia(rotation);  // M_o (9), in {w}
+    const Vector6<Scalar> inertial = (inertia * Motion<Scalar>::from(desired_object_acceleration)).vector();
+    return inertial + object.coriolis_wrench(inertia.rotational().matrix(), desired_object.twist) +
            object.gravity_wrench(model.gravity());
 }
 

@@ -18,7 +18,8 @@
 ///
 /// Error policy, said in the names (docs/conventions.md, "Errors"):
 /// - `weighted_grasp_inverse`, `load_distribution`: validate their arguments and throw
-///   InvalidModel naming the weight and the arm;
+///   InvalidModel naming the weight and the arm (InvalidArgument for a mis-sized r or object
+///   wrench);
 /// - `try_distribute_load`: per tick, noexcept, returns false (output untouched) on degenerate
 ///   weights;
 /// - `LoadDistribution::distribute`: per tick, noexcept, weights validated once at construction,
@@ -87,47 +88,112 @@ template <typename Scalar> Scalar pivot_ratio(const Matrix3<Scalar>& matrix) noe
     return (other - s23 * s23 / middle) / largest;
 }
 
-/// Centroid c, centred offsets r'_i and J*_o of a weighted grasp, with the factor of J*_o.
-/// `valid` is false when a mass weight is not positive or J*_o is singular to the relative
-/// tolerance load_distribution_singularity_tolerance (checked with pivot_ratio).
+/// The weights of (25) in the stacked form: m*_i (N) and J*_i side by side (3 x 3N), read arm by
+/// arm as the central inertia diag(m*_i I3, J*_i) (the lower triangle of J*_i).
+template <typename DerivedMass, typename DerivedInertia> struct StackedLoadWeights {
+    using Scalar = typename DerivedMass::Scalar;
+    const Eigen::MatrixBase<DerivedMass>& mass;
+    const Eigen::MatrixBase<DerivedInertia>& inertia;
+    CentralInertia<Scalar> operator[](std::size_t arm) const noexcept
+    {
+        const Index i = static_cast<Index>(arm);
+        return CentralInertia<Scalar>(mass(i), inertia.template block<3, 3>(0, 3 * i));
+    }
+    std::size_t size() const noexcept { return static_cast<std::size_t>(mass.size()); }
+};
+
+template <typename DerivedMass, typename DerivedInertia>
+StackedLoadWeights<DerivedMass, DerivedInertia> stacked_load_weights(const Eigen::MatrixBase<DerivedMass>& mass,
+                                                                     const Eigen::MatrixBase<DerivedInertia>& inertia) noexcept
+{
+    return StackedLoadWeights<DerivedMass, DerivedInertia>{mass, inertia};
+}
+
+/// A list of weights: a container (std::vector, std::array) of CentralInertia, one per arm.
+template <typename Container, typename = void> struct is_load_weight_list : std::false_type {};
+template <typename Container>
+struct is_load_weight_list<Container, std::void_t<decltype(std::declval<const Container&>()[std::size_t(0)]),
+                                                  decltype(std::declval<const Container&>().size())>>
+    : std::is_same<std::decay_t<decltype(std::declval<const Container&>()[std::size_t(0)])>,
+                   CentralInertia<typename std::decay_t<decltype(std::declval<const Container&>()[std::size_t(0)])>::Scalar>> {};
+template <typename Container> inline constexpr bool is_load_weight_list_v = is_load_weight_list<Container>::value;
+
+/// The weights M*_i = diag(m*_i I3, J*_i) placed at the grasp points r_i, seen from the point
+/// `about`: the composite sum_i G(r_i - about) M*_i G(r_i - about)^T (SpatialInertia::add_shifted).
+/// Its mass is m*_o and, about the weighted centroid, its rotational inertia is J*_o of (25).
+template <typename Weights, typename DerivedR>
+SpatialInertia<typename DerivedR::Scalar> composite_of_weights(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r,
+                                                               const Vector3<typename DerivedR::Scalar>& about) noexcept
+{
+    SpatialInertia<typename DerivedR::Scalar> composite;
+    for (Index i = 0; i < r.cols(); ++i) {
+        composite.add_shifted(weights[static_cast<std::size_t>(i)], r.col(i).template head<3>() - about);
+    }
+    return composite;
+}
+
+/// The weighted grasp of (25): the composite of the weights about their centroid c (mass m*_o,
+/// rotational inertia J*_o) and the factor of J*_o. `valid` is false when a mass weight is not
+/// positive or J*_o is singular to the relative tolerance load_distribution_singularity_tolerance
+/// (checked with pivot_ratio).
+///
+/// The distribution is the rigid motion of that composite body: the object wrench shifted to c
+/// gives it the motion z = (M*_o)^-1 h_c = [f / m*_o; (J*_o)^-1 t_c], and arm i takes
+/// hbar_i = M*_i G(r'_i)^T z, r'_i = r_i - c (the least-norm W G^T (G W G^T)^-1 h_o, block row i
+/// of (25) with E2). J*_o is accumulated about c itself rather than taken from the composite
+/// about the centre of mass (rotational_about_centre), which would subtract m*_o S(c) S(c)^T from
+/// a sum that contains it and lose the digits of a nearly singular J*_o.
 template <typename Scalar> struct WeightedGrasp {
-    Scalar total_mass_weight;                    // m*_o
     Vector3<Scalar> centroid;                    // c, relative to the object's centre of mass
+    CentralInertia<Scalar> composite;            // diag(m*_o I3, J*_o) about c
     FixedCholesky<Scalar, 3> rotational_factor;  // of J*_o
     bool valid;
 
-    template <typename DerivedR, typename DerivedMass, typename DerivedInertia>
-    WeightedGrasp(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedMass>& mass_weights,
-                  const Eigen::MatrixBase<DerivedInertia>& inertia_weights) noexcept
+    template <typename Weights, typename DerivedR>
+    WeightedGrasp(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r) noexcept
     {
-        const Index arms = r.cols();
         bool positive_masses = true;
-        total_mass_weight = Scalar(0);
-        centroid.setZero();
-        for (Index i = 0; i < arms; ++i) {
-            positive_masses = positive_masses && mass_weights(i) > Scalar(0);
-            total_mass_weight += mass_weights(i);
-            centroid += mass_weights(i) * r.col(i).template head<3>();
+        for (Index i = 0; i < r.cols(); ++i) {
+            positive_masses = positive_masses && weights[static_cast<std::size_t>(i)].mass() > Scalar(0);
         }
-        centroid /= total_mass_weight;
-        // J*_o is the rotational inertia, about the centroid, of bodies with the weights as inertias
-        // (25): the composite of diag(m*_i I3, J*_i) shifted to the centred offsets r'_i.
-        SpatialInertia<Scalar> weights_about_centroid;
-        for (Index i = 0; i < arms; ++i) {
-            const Vector3<Scalar> centred = r.col(i).template head<3>() - centroid;
-            weights_about_centroid.add_shifted(
-                CentralInertia<Scalar>(mass_weights(i), Matrix3<Scalar>(inertia_weights.template block<3, 3>(0, 3 * i))),
-                centred);
-        }
-        const Matrix3<Scalar> rotational = weights_about_centroid.rotational().matrix();
+        const SpatialInertia<Scalar> about_centre_of_mass = composite_of_weights(weights, r, Vector3<Scalar>::Zero());
+        centroid = about_centre_of_mass.centre();
+        composite = CentralInertia<Scalar>(about_centre_of_mass.mass(),
+                                           composite_of_weights(weights, r, centroid).rotational());
+        const Matrix3<Scalar> rotational = composite.rotational().matrix();
         const bool factored = rotational_factor.compute(rotational);
         valid = positive_masses && factored &&
                 pivot_ratio(rotational) > Scalar(load_distribution_singularity_tolerance<Scalar>());
     }
+
+    /// z = [f / m*_o; (J*_o)^-1 t_c] with t_c = t_o - c x f, for the object wrench h_o at the
+    /// object's centre of mass.
+    Motion<Scalar> composite_motion(const Force<Scalar>& object_wrench) const noexcept
+    {
+        const Force<Scalar> at_centroid = object_wrench.shifted(Vector3<Scalar>(-centroid));
+        return Motion<Scalar>::make(at_centroid.linear / composite.mass(),
+                                    rotational_factor.solve(at_centroid.angular));
+    }
+
+    /// hbar_i = M*_i G(r_i - c)^T z: arm i's share of the object wrench whose composite motion is z.
+    template <typename Weights, typename DerivedR>
+    Force<Scalar> share(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r, Index arm,
+                        const Motion<Scalar>& motion) const noexcept
+    {
+        return weights[static_cast<std::size_t>(arm)] * motion.at_point(Vector3<Scalar>(r.col(arm).template head<3>() - centroid));
+    }
 };
 
-/// Run-time checks shared by the throwing kernels: sizes, m*_i > 0 and J*_i symmetric positive
-/// semi-definite, each failure naming the parameter (and the arm).
+/// Run-time checks of one weight, naming the parameter and the arm: m*_i > 0 and J*_i symmetric
+/// positive semi-definite.
+template <typename Scalar>
+void validate_load_weight(const Scalar& mass, const Matrix3<Scalar>& rotational, Index arm)
+{
+    require_positive(mass, load_distribution_context(arm), "mass_weights");
+    require_symmetric_positive(rotational, load_distribution_context(arm), "inertia_weights", /*allow_semidefinite=*/true);
+}
+
+/// Run-time checks shared by the throwing kernels and LoadDistribution: sizes, then every weight.
 template <typename DerivedR, typename DerivedMass, typename DerivedInertia>
 void validate_load_distribution_weights(const Eigen::MatrixBase<DerivedR>& r,
                                         const Eigen::MatrixBase<DerivedMass>& mass_weights,
@@ -145,9 +211,23 @@ void validate_load_distribution_weights(const Eigen::MatrixBase<DerivedR>& r,
         fail(load_distribution_context(), "inertia_weights", "must be 3 x 3N (N = " + std::to_string(arms) + ")");
     }
     for (Index i = 0; i < arms; ++i) {
-        require_positive(mass_weights(i), load_distribution_context(i), "mass_weights");
-        require_symmetric_positive(Matrix3<Scalar>(inertia_weights.template block<3, 3>(0, 3 * i)), load_distribution_context(i),
-                                   "inertia_weights", /*allow_semidefinite=*/true);
+        validate_load_weight(Scalar(mass_weights(i)), Matrix3<Scalar>(inertia_weights.template block<3, 3>(0, 3 * i)), i);
+    }
+}
+
+/// The same for a list of weights (the rotational weight is symmetric by its type).
+template <typename Weights, typename DerivedR>
+void validate_load_weight_list(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r)
+{
+    if (r.rows() != 3) {
+        fail(load_distribution_context(), "r", "must be 3 x N");
+    }
+    if (static_cast<Index>(weights.size()) != r.cols()) {
+        fail(load_distribution_context(), "weights", "must have one entry per arm (" + std::to_string(r.cols()) + ")");
+    }
+    for (Index i = 0; i < r.cols(); ++i) {
+        const auto& weight = weights[static_cast<std::size_t>(i)];
+        validate_load_weight(weight.mass(), weight.rotational().matrix(), i);
     }
 }
 
@@ -156,6 +236,65 @@ void validate_load_distribution_weights(const Eigen::MatrixBase<DerivedR>& r,
     fail(load_distribution_context(), "inertia_weights",
          "make J*_o singular (degenerate grasp: e.g. zero rotational weights with collinear grasp points); the "
          "object torque about that axis cannot be distributed");
+}
+
+/// G+_M column by column: column k is the distribution of the unit wrench e_k (no validation).
+template <typename Weights, typename DerivedR>
+Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 6>
+weighted_grasp_inverse_of(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r)
+{
+    using Scalar = typename DerivedR::Scalar;
+    const WeightedGrasp<Scalar> grasp(weights, r);
+    if (!grasp.valid) {
+        fail_degenerate_grasp();
+    }
+    Eigen::Matrix<Scalar, times_six(DerivedR::ColsAtCompileTime), 6> result(6 * r.cols(), 6);
+    for (int column = 0; column < 6; ++column) {
+        const Motion<Scalar> motion = grasp.composite_motion(Force<Scalar>::from(Vector6<Scalar>::Unit(column)));
+        for (Index i = 0; i < r.cols(); ++i) {
+            grasp.share(weights, r, i, motion).write_to(result.col(column).template segment<6>(6 * i));
+        }
+    }
+    return result;
+}
+
+/// h_i^d = -hbar_i into `desired_wrenches` (6N); false, output untouched, on degenerate weights.
+template <typename Weights, typename DerivedR, typename DerivedWrench, typename DerivedOut>
+bool try_distribute(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r,
+                    const Eigen::MatrixBase<DerivedWrench>& object_wrench,
+                    const Eigen::MatrixBase<DerivedOut>& desired_wrenches_out) noexcept
+{
+    using Scalar = typename DerivedR::Scalar;
+    auto& desired_wrenches = const_cast<Eigen::MatrixBase<DerivedOut>&>(desired_wrenches_out);
+    COOPDYN_ASSERT(desired_wrenches.size() == 6 * r.cols(), "desired wrenches must have 6N entries");
+    COOPDYN_ASSERT(object_wrench.size() == 6, "the object wrench must have 6 entries");
+    const WeightedGrasp<Scalar> grasp(weights, r);
+    if (!grasp.valid) {
+        return false;
+    }
+    const Motion<Scalar> motion = grasp.composite_motion(
+        Force<Scalar>::make(object_wrench.template head<3>(), object_wrench.template tail<3>()));
+    for (Index i = 0; i < r.cols(); ++i) {
+        (-grasp.share(weights, r, i, motion)).write_to(desired_wrenches.template segment<6>(6 * i));
+    }
+    return true;
+}
+
+/// h'^d by value for validated weights; throws on a wrong-size object wrench or degenerate weights.
+template <typename Weights, typename DerivedR, typename DerivedWrench>
+Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 1>
+load_distribution_of(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r,
+                     const Eigen::MatrixBase<DerivedWrench>& object_wrench)
+{
+    if (object_wrench.size() != 6) {
+        fail(argument_context("load distribution"), "object_wrench", "must have 6 entries");
+    }
+    using Result = Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 1>;
+    Result result = Result::Zero(6 * r.cols());
+    if (!try_distribute(weights, r, object_wrench, result)) {
+        fail_degenerate_grasp();
+    }
+    return result;
 }
 
 }  // namespace detail
@@ -174,32 +313,19 @@ Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime),
 weighted_grasp_inverse(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedMass>& mass_weights,
                        const Eigen::MatrixBase<DerivedInertia>& inertia_weights)
 {
-    using Scalar = typename DerivedR::Scalar;
-    const Index arms = r.cols();
     detail::validate_load_distribution_weights(r, mass_weights, inertia_weights);
-    const detail::WeightedGrasp<Scalar> grasp(r, mass_weights, inertia_weights);
-    if (!grasp.valid) {
-        detail::fail_degenerate_grasp();
-    }
-    // (J*_o)^-1 column by column.
-    Matrix3<Scalar> rotational_inverse;
-    for (int column = 0; column < 3; ++column) {
-        rotational_inverse.col(column) = grasp.rotational_factor.solve(Vector3<Scalar>::Unit(column));
-    }
-    // Shift of the object wrench from the centre of mass to the centroid: t_c = t_o - c x f.
-    Matrix6<Scalar> shift = Matrix6<Scalar>::Identity();
-    shift.template bottomLeftCorner<3, 3>() = -skew(grasp.centroid);
+    return detail::weighted_grasp_inverse_of(detail::stacked_load_weights(mass_weights, inertia_weights), r);
+}
 
-    Eigen::Matrix<Scalar, times_six(DerivedR::ColsAtCompileTime), 6> result(6 * arms, 6);
-    for (Index i = 0; i < arms; ++i) {
-        const Vector3<Scalar> centred = r.col(i).template head<3>() - grasp.centroid;
-        Matrix6<Scalar> block = Matrix6<Scalar>::Zero();
-        block.template topLeftCorner<3, 3>().diagonal().setConstant(mass_weights(i) / grasp.total_mass_weight);
-        block.template topRightCorner<3, 3>() = mass_weights(i) * skew(centred).transpose() * rotational_inverse;
-        block.template bottomRightCorner<3, 3>() = inertia_weights.template block<3, 3>(0, 3 * i) * rotational_inverse;
-        result.template middleRows<6>(6 * i) = block * shift;
-    }
-    return result;
+/// \brief weighted_grasp_inverse in the argument order of docs/conventions.md: the weights
+/// M*_i = diag(m*_i I3, J*_i) as a list of CentralInertia (one per arm; e.g.
+/// model.end_effector_inertia_list() for the non-squeezing weights), then r. Throws as above.
+template <typename Weights, typename DerivedR, std::enable_if_t<detail::is_load_weight_list_v<Weights>, int> = 0>
+Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 6>
+weighted_grasp_inverse(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r)
+{
+    detail::validate_load_weight_list(weights, r);
+    return detail::weighted_grasp_inverse_of(weights, r);
 }
 
 /// \brief Desired wrenches h_i^d = -(G+_M h_o^d)_i of (26) written into caller storage (6N), in
@@ -212,35 +338,31 @@ weighted_grasp_inverse(const Eigen::MatrixBase<DerivedR>& r, const Eigen::Matrix
 template <typename DerivedR, typename DerivedMass, typename DerivedInertia, typename DerivedWrench,
           typename DerivedOut>
 bool try_distribute_load(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedMass>& mass_weights,
-                     const Eigen::MatrixBase<DerivedInertia>& inertia_weights,
-                     const Eigen::MatrixBase<DerivedWrench>& object_wrench,
-                     const Eigen::MatrixBase<DerivedOut>& desired_wrenches_out) noexcept
+                         const Eigen::MatrixBase<DerivedInertia>& inertia_weights,
+                         const Eigen::MatrixBase<DerivedWrench>& object_wrench,
+                         const Eigen::MatrixBase<DerivedOut>& desired_wrenches_out) noexcept
 {
-    using Scalar = typename DerivedR::Scalar;
-    auto& desired_wrenches = const_cast<Eigen::MatrixBase<DerivedOut>&>(desired_wrenches_out);
-    const Index arms = r.cols();
-    COOPDYN_ASSERT(desired_wrenches.size() == 6 * arms, "desired wrenches must have 6N entries");
-    const detail::WeightedGrasp<Scalar> grasp(r, mass_weights, inertia_weights);
-    if (!grasp.valid) {
-        return false;
-    }
-    const Vector3<Scalar> force = object_wrench.template head<3>();
-    const Vector3<Scalar> torque_at_centroid = object_wrench.template tail<3>() - grasp.centroid.cross(force);
-    const Vector3<Scalar> angular = grasp.rotational_factor.solve(torque_at_centroid);  // (J*_o)^-1 t_c
-    for (Index i = 0; i < arms; ++i) {
-        const Vector3<Scalar> centred = r.col(i).template head<3>() - grasp.centroid;
-        // hbar_i = [(m*_i/m*_o) f + m*_i S(r'_i)^T a; J*_i a] with a = (J*_o)^-1 t_c; h_i^d = -hbar_i.
-        desired_wrenches.template segment<3>(6 * i) =
-            -(mass_weights(i) / grasp.total_mass_weight) * force - mass_weights(i) * angular.cross(centred);
-        desired_wrenches.template segment<3>(6 * i + 3) =
-            -(inertia_weights.template block<3, 3>(0, 3 * i) * angular);
-    }
-    return true;
+    COOPDYN_ASSERT(mass_weights.size() == r.cols() && inertia_weights.cols() == 3 * r.cols(),
+                   "one weight per arm: N mass weights, 3 x 3N inertia weights");
+    return detail::try_distribute(detail::stacked_load_weights(mass_weights, inertia_weights), r, object_wrench,
+                                  desired_wrenches_out);
+}
+
+/// \brief try_distribute_load in the argument order of docs/conventions.md: the weights as a list
+/// of CentralInertia (as weighted_grasp_inverse(weights, r)), r, h_o^d, then the output.
+template <typename Weights, typename DerivedR, typename DerivedWrench, typename DerivedOut,
+          std::enable_if_t<detail::is_load_weight_list_v<Weights>, int> = 0>
+bool try_distribute_load(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r,
+                         const Eigen::MatrixBase<DerivedWrench>& object_wrench,
+                         const Eigen::MatrixBase<DerivedOut>& desired_wrenches_out) noexcept
+{
+    COOPDYN_ASSERT(static_cast<Index>(weights.size()) == r.cols(), "one weight per arm");
+    return detail::try_distribute(weights, r, object_wrench, desired_wrenches_out);
 }
 
 /// \brief Desired end-effector wrenches h'^d (6N), h_i^d = -(G+_M h_o^d)_i, (26). Throws
 /// InvalidModel on invalid or degenerate weights, naming the parameter and the arm (see
-/// weighted_grasp_inverse).
+/// weighted_grasp_inverse), InvalidArgument when the object wrench is not a 6-vector.
 template <typename DerivedR, typename DerivedMass, typename DerivedInertia, typename DerivedWrench>
 Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 1>
 load_distribution(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedMass>& mass_weights,
@@ -248,15 +370,19 @@ load_distribution(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<
                   const Eigen::MatrixBase<DerivedWrench>& object_wrench)
 {
     detail::validate_load_distribution_weights(r, mass_weights, inertia_weights);
-    if (object_wrench.size() != 6) {
-        detail::fail(detail::argument_context("load distribution"), "object_wrench", "must have 6 entries");
-    }
-    Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 1> result =
-        Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 1>::Zero(6 * r.cols());
-    if (!try_distribute_load(r, mass_weights, inertia_weights, object_wrench, result)) {
-        detail::fail_degenerate_grasp();
-    }
-    return result;
+    return detail::load_distribution_of(detail::stacked_load_weights(mass_weights, inertia_weights), r, object_wrench);
+}
+
+/// \brief load_distribution in the argument order of docs/conventions.md: the weights as a list
+/// of CentralInertia, r, h_o^d. Throws as above.
+template <typename Weights, typename DerivedR, typename DerivedWrench,
+          std::enable_if_t<detail::is_load_weight_list_v<Weights>, int> = 0>
+Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 1>
+load_distribution(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r,
+                  const Eigen::MatrixBase<DerivedWrench>& object_wrench)
+{
+    detail::validate_load_weight_list(weights, r);
+    return detail::load_distribution_of(weights, r, object_wrench);
 }
 
 /// \brief Load distribution (26) for a Model: validated weights, then an allocation-free,
@@ -287,21 +413,9 @@ public:
     LoadDistribution(const ModelType& model, MassWeights mass_weights, InertiaWeights inertia_weights)
         : mass_weights_(std::move(mass_weights)), inertia_weights_(std::move(inertia_weights))
     {
-        const Index arms = model.arms();
-        if (mass_weights_.size() != arms) {
-            detail::fail(detail::load_distribution_context(), "mass_weights", "must have one entry per arm (" + std::to_string(arms) + ")");
-        }
-        if (inertia_weights_.rows() != 3 || inertia_weights_.cols() != 3 * arms) {
-            detail::fail(detail::load_distribution_context(), "inertia_weights", "must be 3 x 3N");
-        }
-        Matrix3<Scalar> rotational_weight_sum = Matrix3<Scalar>::Zero();
-        for (Index i = 0; i < arms; ++i) {
-            detail::require_positive(mass_weights_(i), detail::load_distribution_context(i), "mass_weights");
-            detail::require_symmetric_positive(Matrix3<Scalar>(inertia_weights_.template block<3, 3>(0, 3 * i)),
-                                               detail::load_distribution_context(i), "inertia_weights", /*allow_semidefinite=*/true);
-            rotational_weight_sum += inertia_weights_.template block<3, 3>(0, 3 * i);
-        }
-        // The spread of the grasp points, sum m*_i S(r'_i) S(r'_i)^T, rotates with the object but
+        detail::validate_load_distribution_weights(model.grasp_offsets_body(), mass_weights_, inertia_weights_);
+        // The spread of the grasp points, sum m*_i S(r'_i) S(r'_i)^T (the rotational inertia about
+        // the centroid of point masses m*_i at the grasp points), rotates with the object but
         // keeps its eigenvalues; it is singular exactly when the points are collinear. In any
         // orientation lambda_min(J*_o) >= max(lambda_min(spread), lambda_min(sum J*_i)) and
         // lambda_max(J*_o) <= lambda_max(spread) + lambda_max(sum J*_i), so requiring the first
@@ -309,10 +423,15 @@ public:
         // and then the per-tick test of try_distribute_load (whose pivot ratio is never below
         // lambda_min / lambda_max, up to rounding) passes. Relative only: a common scale of all
         // weights changes nothing in (25).
-        const Vector3<Scalar> centroid = model.grasp_offsets_body() * mass_weights_ / mass_weights_.sum();
-        Matrix3<Scalar> spread = Matrix3<Scalar>::Zero();
-        for (Index i = 0; i < arms; ++i) {
-            spread += mass_weights_(i) * skew_gram(Vector3<Scalar>(model.grasp_offsets_body().col(i) - centroid));
+        const auto& offsets = model.grasp_offsets_body();
+        const InertiaWeights no_rotational_weights = InertiaWeights::Zero(3, 3 * model.arms());
+        const auto weights = detail::stacked_load_weights(mass_weights_, inertia_weights_);
+        const auto point_masses = detail::stacked_load_weights(mass_weights_, no_rotational_weights);
+        const Vector3<Scalar> centroid = detail::composite_of_weights(weights, offsets, Vector3<Scalar>::Zero()).centre();
+        const Matrix3<Scalar> spread = detail::composite_of_weights(point_masses, offsets, centroid).rotational().matrix();
+        Symmetric3<Scalar> rotational_weight_sum;
+        for (std::size_t i = 0; i < weights.size(); ++i) {
+            rotational_weight_sum += weights[i].rotational();
         }
         const auto eigenvalues = [](const Matrix3<Scalar>& matrix) {
             return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(detail::values_of(matrix), Eigen::EigenvaluesOnly)
@@ -320,7 +439,7 @@ public:
                 .eval();
         };
         const Eigen::Vector3d spread_eigenvalues = eigenvalues(spread);
-        const Eigen::Vector3d rotational_eigenvalues = eigenvalues(rotational_weight_sum);
+        const Eigen::Vector3d rotational_eigenvalues = eigenvalues(rotational_weight_sum.matrix());
         const double smallest_bound = std::max(spread_eigenvalues(0), rotational_eigenvalues(0));
         const double largest_bound = spread_eigenvalues(2) + rotational_eigenvalues(2);
         if (!(smallest_bound > detail::load_distribution_singularity_tolerance<Scalar>() * largest_bound)) {
