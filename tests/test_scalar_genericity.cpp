@@ -13,6 +13,8 @@
 #include "coopdyn/model/resolved_acceleration_end_effector.hpp"
 #include "coopdyn/spatial/quaternion.hpp"
 
+#include "sample_systems.hpp"
+
 #include <unsupported/Eigen/AutoDiff>
 
 #include <gtest/gtest.h>
@@ -43,6 +45,8 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector3d = Eigen::Vector3d;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Quaterniond = Eigen::Quaterniond;
+using coopdyn_test::gaussian_quaternion;
+using coopdyn_test::random_vector;
 
 constexpr int directions = 7;
 using AutoDiff = Eigen::AutoDiffScalar<Eigen::Matrix<double, directions, 1>>;
@@ -63,11 +67,7 @@ struct Scenario {
     Eigen::Matrix<double, 12, 1> end_effector_disturbances;
 };
 
-Vector3d random_vector(std::mt19937& rng, double scale = 1.0)
-{
-    std::uniform_real_distribution<double> uniform(-scale, scale);
-    return Vector3d(uniform(rng), uniform(rng), uniform(rng));
-}
+// random_vector(rng, scale) and gaussian_quaternion: sample_systems.hpp.
 
 template <int Size> Eigen::Matrix<double, Size, 1> random_stack(std::mt19937& rng, double scale)
 {
@@ -78,22 +78,16 @@ template <int Size> Eigen::Matrix<double, Size, 1> random_stack(std::mt19937& rn
     return result;
 }
 
-Quaterniond random_quaternion(std::mt19937& rng)
-{
-    std::normal_distribution<double> normal(0.0, 1.0);
-    return Quaterniond(Eigen::Vector4d(normal(rng), normal(rng), normal(rng), normal(rng)).normalized());
-}
-
 Scenario make_scenario(unsigned seed)
 {
     std::mt19937 rng(seed);
     Scenario s;
     s.state.pose.position = random_vector(rng, 0.5);
-    s.state.pose.orientation = random_quaternion(rng);
+    s.state.pose.orientation = gaussian_quaternion(rng);
     s.state.twist = random_stack<6>(rng, 1.5);
     s.setpoint_positions.col(0) = random_vector(rng, 0.6);
     s.setpoint_positions.col(1) = random_vector(rng, 0.6);
-    s.setpoint_orientations = {random_quaternion(rng), random_quaternion(rng)};
+    s.setpoint_orientations = {gaussian_quaternion(rng), gaussian_quaternion(rng)};
     s.setpoint_twists = random_stack<12>(rng, 1.0);
     s.setpoint_accelerations = random_stack<12>(rng, 2.0);
     s.setpoint_wrenches = random_stack<12>(rng, 5.0);

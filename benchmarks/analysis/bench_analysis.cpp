@@ -13,16 +13,17 @@
 
 #include <coopdyn/coopdyn.hpp>
 
-#include "../common/random_systems.hpp"
+#include "sample_systems.hpp"
 
 #include <benchmark/benchmark.h>
 
 namespace {
 
 using coopdyn::Dynamic;
-using coopdyn_benchmark::Index;
-using coopdyn_benchmark::Random;
-using coopdyn_benchmark::TickFixture;
+using coopdyn_test::Index;
+using coopdyn_test::random_matrix;
+using coopdyn_test::Rng;
+using coopdyn_test::TickFixture;
 
 /// The per-tick fixture plus the coordination/analysis workspaces and a desired object motion.
 template <int Arms> struct AnalysisFixture : TickFixture<Arms> {
@@ -37,10 +38,10 @@ template <int Arms> struct AnalysisFixture : TickFixture<Arms> {
     explicit AnalysisFixture(Index arms)
         : Base(arms), load_distribution(this->model), decomposition(this->model)
     {
-        Random random(99u + static_cast<std::uint32_t>(arms));
+        Rng rng(99u + static_cast<std::uint32_t>(arms));
         desired_object = this->state;
-        desired_object.twist += 0.1 * random.matrix(6, 1);
-        desired_acceleration = random.matrix(6, 1);
+        desired_object.twist += 0.1 * random_matrix(6, 1, rng);
+        desired_acceleration = random_matrix(6, 1, rng);
         coopdyn::interaction_dynamics(this->model, this->data, this->state, this->setpoints, this->disturbances);
     }
 };
@@ -48,7 +49,8 @@ template <int Arms> struct AnalysisFixture : TickFixture<Arms> {
 template <int N> void BM_LoadDistribution(benchmark::State& state)
 {
     AnalysisFixture<N> f(N);
-    const coopdyn::Vector6<double> object_wrench = Random(5u).matrix(6, 1, -10, 10);
+    Rng rng(5u);
+    const coopdyn::Vector6<double> object_wrench = random_matrix(6, 1, rng, -10, 10);
     for (auto _ : state) {
         benchmark::ClobberMemory();
         f.load_distribution.distribute(f.data, object_wrench, f.setpoints);

@@ -20,7 +20,7 @@
 
 #include <coopdyn/coopdyn.hpp>
 
-#include "../common/random_systems.hpp"
+#include "sample_systems.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -34,11 +34,14 @@
 namespace {
 
 using coopdyn::Dynamic;
-using coopdyn_benchmark::Index;
-using coopdyn_benchmark::MatrixX;
-using coopdyn_benchmark::Random;
-using coopdyn_benchmark::TickFixture;
-using coopdyn_benchmark::VectorX;
+using coopdyn_test::Index;
+using coopdyn_test::random_matrix;
+using coopdyn_test::random_spd;
+using coopdyn_test::Rng;
+using coopdyn_test::TickFixture;
+using coopdyn_test::uniform;
+using MatrixX = Eigen::MatrixXd;
+using VectorX = Eigen::VectorXd;
 
 constexpr double tolerance = 1e-9;
 
@@ -63,22 +66,22 @@ struct Case {
 
 Case make_case(Index arms, std::uint32_t seed)
 {
-    Random random(seed);
+    Rng rng(seed);
     Case c;
-    c.object_mass = random.uniform(1, 5);
-    c.object_rotational = random.spd(3, 0.5);
-    c.object_general = random.spd(6, 2.0);
+    c.object_mass = uniform(rng, 1, 5);
+    c.object_rotational = random_spd(3, rng, 1.0, 0.5);
+    c.object_general = random_spd(6, rng, 1.0, 2.0);
     c.masses.resize(arms);
     c.rotational.resize(3, 3 * arms);
     c.general.resize(6, 6 * arms);
     for (Index i = 0; i < arms; ++i) {
-        c.masses(i) = random.uniform(1, 5);
-        c.rotational.block(0, 3 * i, 3, 3) = random.spd(3, 0.5);
-        c.general.block(0, 6 * i, 6, 6) = random.spd(6, 2.0);
+        c.masses(i) = uniform(rng, 1, 5);
+        c.rotational.block(0, 3 * i, 3, 3) = random_spd(3, rng, 1.0, 0.5);
+        c.general.block(0, 6 * i, 6, 6) = random_spd(6, rng, 1.0, 2.0);
     }
-    c.r = random.matrix(3, arms);  // r_i in [-1, 1]^3
-    c.omega = random.matrix(3, 1, -2, 2);
-    c.h_sigma = random.matrix(6 * (arms + 1), 1, -10, 10);
+    c.r = random_matrix(3, arms, rng);  // r_i in [-1, 1]^3
+    c.omega = random_matrix(3, 1, rng, -2, 2);
+    c.h_sigma = random_matrix(6 * (arms + 1), 1, rng, -10, 10);
     return c;
 }
 

@@ -17,6 +17,8 @@
 // example adds per logged step, with BM_LoadDistribution for its controller).
 #include <coopdyn/coopdyn.hpp>
 
+#include "sample_systems.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -35,26 +37,11 @@ constexpr double time_step = 1e-3;
 constexpr coopdyn::Index steps_20s = 20000;
 constexpr double pi = 3.14159265358979323846;
 
-/// The paper's beam: m_o = 1.75 kg, J_o_body = diag(0.055, 0, 0.055), arms at y = -+0.4 m with
-/// m_i = 10, J_i = 0.5 I3, d_i = 180, delta_i = 10, k_i = 300, kappa_i = 50.
-Model beam_model()
-{
-    coopdyn::ImpedanceEndEffector<double> arm;
-    arm.mass = 10.0;
-    arm.rotational_inertia = 0.5 * Eigen::Matrix3d::Identity();
-    arm.translational_damping = 180.0;
-    arm.rotational_damping = 10.0;
-    arm.translational_stiffness = 300.0;
-    arm.rotational_stiffness = 50.0;
-    coopdyn::RigidObject<double> beam;
-    beam.mass = 1.75;
-    beam.inertia_body = Eigen::Vector3d(0.055, 0.0, 0.055).asDiagonal();
-    return Model(beam, {{arm, {Eigen::Vector3d(0.0, -0.4, 0.0)}}, {arm, {Eigen::Vector3d(0.0, 0.4, 0.0)}}});
-}
-
 const Model& model()
 {
-    static const Model instance = beam_model();
+    // The paper's beam (sample_systems.hpp): m_o = 1.75 kg, J_o_body = diag(0.055, 0, 0.055), arms
+    // at y = -+0.4 m with m_i = 10, J_i = 0.5 I3, d_i = 180, delta_i = 10, k_i = 300, kappa_i = 50.
+    static const Model instance = coopdyn_test::section_five_beam_model<Model>();
     return instance;
 }
 

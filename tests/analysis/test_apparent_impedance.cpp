@@ -19,7 +19,7 @@
 #include "coopdyn/dynamics/simulator.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
 
-#include "../dynamics/random_systems.hpp"
+#include "sample_systems.hpp"
 
 #include <gtest/gtest.h>
 
@@ -39,10 +39,21 @@ template struct coopdyn::ApparentImpedance<float>;
 namespace {
 
 using coopdyn::Index;
+using coopdyn_test::ArmParameters;
+using coopdyn_test::BeamParameters;
 using coopdyn_test::hat;
+using coopdyn_test::make_model;
+using coopdyn_test::make_state;
 using coopdyn_test::Matrix6d;
+using coopdyn_test::random_arms;
+using coopdyn_test::random_equilibrium;
+using coopdyn_test::random_object;
 using coopdyn_test::relative_error;
 using coopdyn_test::Rng;
+using coopdyn_test::rotation_angle_between;
+using coopdyn_test::rotation_exponential;
+using coopdyn_test::rotation_matrix;
+using coopdyn_test::section_five_beam;
 using coopdyn_test::uniform;
 using coopdyn_test::Vector6d;
 using Eigen::Matrix3d;
@@ -62,35 +73,7 @@ constexpr double pi = 3.14159265358979323846;
 // not from the library.
 // ---------------------------------------------------------------------------------------------
 
-/// Rotation matrix of a unit quaternion, written out.
-Matrix3d rotation_matrix(const Quaterniond& q)
-{
-    const double w = q.w(), x = q.x(), y = q.y(), z = q.z();
-    Matrix3d r;
-    r << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),  //
-        2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),  //
-        2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
-    return r;
-}
-
-/// exp of a world-frame rotation vector, [cos(a/2); sin(a/2) u] (closed form).
-Quaterniond rotation_exponential(const Vector3d& rotation_vector)
-{
-    const double angle = rotation_vector.norm();
-    if (angle == 0.0) {
-        return Quaterniond::Identity();
-    }
-    const Vector3d axis = rotation_vector / angle;
-    const double s = std::sin(angle / 2);
-    return Quaterniond(std::cos(angle / 2), s * axis.x(), s * axis.y(), s * axis.z());
-}
-
-/// Angle of the rotation between two orientations (sign-invariant).
-double rotation_angle_between(const Quaterniond& a, const Quaterniond& b)
-{
-    const Quaterniond e = a * b.conjugate();
-    return 2.0 * std::atan2(e.vec().norm(), std::abs(e.w()));
-}
+// rotation_matrix, rotation_exponential, rotation_angle_between, make_state: sample_systems.hpp.
 
 /// The pose displaced by a world-frame twist displacement delta = [dp; dtheta]:
 /// p + dp, exp(dtheta) (x) q (the coordinates in which K of Theorem 2 is the Jacobian).
@@ -102,72 +85,7 @@ State displaced(const State& state, const Vector6d& delta)
     return result;
 }
 
-State make_state(const Vector3d& position, const Quaterniond& orientation, const Vector6d& twist)
-{
-    State state;
-    state.pose.position = position;
-    state.pose.orientation = orientation;
-    state.twist = twist;
-    return state;
-}
-
-struct ArmParameters {
-    double mass = 0.0;
-    Matrix3d inertia = Matrix3d::Zero();
-    double damping = 0.0;
-    double rotational_damping = 0.0;
-    double stiffness = 0.0;
-    double rotational_stiffness = 0.0;
-    Vector3d offset_body = Vector3d::Zero();
-    Quaterniond grasp_orientation = Quaterniond::Identity();
-};
-
-/// N arms with different masses, coupled (non-diagonal) inertias, different gains, random
-/// offsets (no symmetry) and random grasp orientations.
-std::vector<ArmParameters> random_arms(Index arms, Rng& rng)
-{
-    const MatrixXd offsets = coopdyn_test::random_offsets(arms, rng);
-    std::vector<ArmParameters> result(static_cast<std::size_t>(arms));
-    for (Index i = 0; i < arms; ++i) {
-        ArmParameters& arm = result[static_cast<std::size_t>(i)];
-        arm.mass = uniform(rng, 1.0, 12.0);
-        arm.inertia = coopdyn_test::random_spd(3, rng, 0.05);
-        arm.damping = uniform(rng, 20.0, 200.0);
-        arm.rotational_damping = uniform(rng, 1.0, 15.0);
-        arm.stiffness = uniform(rng, 100.0, 600.0);
-        arm.rotational_stiffness = uniform(rng, 10.0, 80.0);
-        arm.offset_body = offsets.col(i);
-        arm.grasp_orientation = coopdyn_test::random_unit_quaternion(rng);
-    }
-    return result;
-}
-
-coopdyn::RigidObject<double> random_object(Rng& rng)
-{
-    coopdyn::RigidObject<double> object;
-    object.mass = uniform(rng, 1.0, 3.0);
-    object.inertia_body = coopdyn_test::random_spd(3, rng, 0.03);
-    return object;
-}
-
-template <typename ModelType>
-ModelType make_model(const coopdyn::RigidObject<double>& object, const std::vector<ArmParameters>& arms,
-                     const Vector3d& gravity)
-{
-    std::vector<typename ModelType::ArmType> list;
-    for (const ArmParameters& p : arms) {
-        typename ModelType::ArmType arm;
-        arm.end_effector.mass = p.mass;
-        arm.end_effector.rotational_inertia = p.inertia;
-        arm.end_effector.translational_damping = p.damping;
-        arm.end_effector.rotational_damping = p.rotational_damping;
-        arm.end_effector.translational_stiffness = p.stiffness;
-        arm.end_effector.rotational_stiffness = p.rotational_stiffness;
-        arm.grasp_body = coopdyn::Pose<double>(p.offset_body, p.grasp_orientation);
-        list.push_back(arm);
-    }
-    return ModelType(object, list, gravity);
-}
+// ArmParameters, random_arms, random_object (analysis ranges) and make_model: sample_systems.hpp.
 
 /// Setpoints x_i^d at the grasp poses of the object pose `equilibrium` (38): constant, zero
 /// twist, acceleration and wrench.
@@ -182,13 +100,6 @@ coopdyn::Setpoints<double, ModelType::arms_at_compile_time> setpoints_at(const M
         setpoints.set_pose(i, data.end_effector_pose(i));
     }
     return setpoints;
-}
-
-/// A random object equilibrium: position of order 1 m, random orientation, at rest.
-State random_equilibrium(Rng& rng)
-{
-    return make_state(coopdyn_test::random_vector(3, rng), coopdyn_test::random_unit_quaternion(rng),
-                      Vector6d::Zero());
 }
 
 /// r_i = R(q_o) r_i_body, written out.
@@ -261,30 +172,8 @@ TEST(ApparentImpedanceWorkedNumbers, ExampleAfterTheorem2)
     EXPECT_EQ(from_model.damping, kernel.damping);
 }
 
-/// The Section V beam of docs/analysis.md: beam along y, J_o_body = diag(0.055, 0, 0.055).
-struct BeamParameters {
-    coopdyn::RigidObject<double> object;
-    std::vector<ArmParameters> arms;
-};
-
-BeamParameters section_five_beam()
-{
-    BeamParameters beam;
-    beam.object.mass = 1.75;
-    beam.object.inertia_body = Vector3d(0.055, 0.0, 0.055).asDiagonal();  // idealised thin beam
-    beam.arms.resize(2);
-    for (std::size_t i = 0; i < 2; ++i) {
-        ArmParameters& arm = beam.arms[i];
-        arm.mass = 10.0;
-        arm.inertia = 0.5 * Matrix3d::Identity();
-        arm.damping = 180.0;
-        arm.rotational_damping = 10.0;
-        arm.stiffness = 300.0;
-        arm.rotational_stiffness = 50.0;
-        arm.offset_body = Vector3d(0.0, i == 0 ? -0.4 : 0.4, 0.0);
-    }
-    return beam;
-}
+// The Section V beam of docs/analysis.md (beam along y, J_o_body = diag(0.055, 0, 0.055)):
+// section_five_beam of sample_systems.hpp.
 
 TEST(ApparentImpedanceWorkedNumbers, SectionFiveBeam)
 {
@@ -469,30 +358,6 @@ TEST(ApparentImpedanceStiffness, MatchesFiniteDifferencesOfTheExactRestoringWren
                 worst);
 }
 
-/// The model of `make_model` in another scalar type (float, autodiff).
-template <typename Scalar>
-coopdyn::Model<Scalar, coopdyn::Dynamic> make_model_as(const coopdyn::RigidObject<double>& object,
-                                                       const std::vector<ArmParameters>& arms)
-{
-    using ModelType = coopdyn::Model<Scalar, coopdyn::Dynamic>;
-    coopdyn::RigidObject<Scalar> object_as;
-    object_as.mass = Scalar(object.mass);
-    object_as.inertia_body = object.inertia_body.cast<Scalar>();
-    std::vector<typename ModelType::ArmType> list;
-    for (const ArmParameters& p : arms) {
-        typename ModelType::ArmType arm;
-        arm.end_effector.mass = Scalar(p.mass);
-        arm.end_effector.rotational_inertia = p.inertia.cast<Scalar>();
-        arm.end_effector.translational_damping = Scalar(p.damping);
-        arm.end_effector.rotational_damping = Scalar(p.rotational_damping);
-        arm.end_effector.translational_stiffness = Scalar(p.stiffness);
-        arm.end_effector.rotational_stiffness = Scalar(p.rotational_stiffness);
-        arm.grasp_body = coopdyn::Pose<double>(p.offset_body, p.grasp_orientation).cast<Scalar>();
-        list.push_back(arm);
-    }
-    return ModelType(object_as, list, coopdyn::Vector3<Scalar>::Zero());
-}
-
 TEST(ApparentImpedanceStiffness, MatchesTheAutomaticDerivativeOfTheExactRestoringWrench)
 {
     // A third method without truncation error: forward-mode automatic differentiation of
@@ -510,7 +375,7 @@ TEST(ApparentImpedanceStiffness, MatchesTheAutomaticDerivativeOfTheExactRestorin
         coopdyn::grasp_kinematics(model, data, equilibrium);
         const Matrix6d stiffness = coopdyn::apparent_impedance(model, data).stiffness;
 
-        const auto model_ad = make_model_as<AutoDiff>(object, arms);
+        const auto model_ad = make_model<coopdyn::Model<AutoDiff, coopdyn::Dynamic>>(object, arms, Vector3d::Zero());
         coopdyn::Setpoints<AutoDiff, coopdyn::Dynamic> setpoints_ad(arms_count);
         for (Index i = 0; i < arms_count; ++i) {
             setpoints_ad.set_pose(i, setpoints.pose(i).cast<AutoDiff>());

@@ -17,7 +17,7 @@
 #include "coopdyn/analysis/stability.hpp"
 #include "coopdyn/dynamics/cooperative_dynamics.hpp"
 
-#include "../dynamics/random_systems.hpp"
+#include "sample_systems.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -91,46 +91,8 @@ double optimality_violation(const MatrixXd& r, const coopdyn::SynthesisResult<do
 }
 
 // ---------------------------------------------------------------------------------------------
-// Random models with known positive gains.
-
-coopdyn::ImpedanceEndEffector<double> random_end_effector(Rng& rng)
-{
-    coopdyn::ImpedanceEndEffector<double> e;
-    e.mass = uniform(rng, 1.0, 10.0);
-    e.rotational_inertia = random_spd(3, rng, uniform(rng, 0.1, 1.0));
-    e.translational_damping = uniform(rng, 20.0, 300.0);
-    e.rotational_damping = uniform(rng, 2.0, 30.0);
-    e.translational_stiffness = uniform(rng, 50.0, 800.0);
-    e.rotational_stiffness = uniform(rng, 5.0, 100.0);
-    return e;
-}
-
-template <typename ModelType> ModelType random_model(Index arms, unsigned seed)
-{
-    Rng rng(seed);
-    coopdyn::RigidObject<double> object;
-    object.mass = uniform(rng, 0.5, 3.0);
-    object.inertia_body = random_spd(3, rng, 0.1);
-    const MatrixXd r = random_offsets(arms, rng);
-    std::vector<typename ModelType::ArmType> list;
-    for (Index i = 0; i < arms; ++i) {
-        typename ModelType::ArmType arm;
-        arm.end_effector = random_end_effector(rng);
-        arm.grasp_body.position = r.col(i);
-        arm.grasp_body.orientation = random_unit_quaternion(rng);
-        list.push_back(arm);
-    }
-    return ModelType(object, list);
-}
-
-coopdyn::RigidBodyState<double> random_state(Rng& rng)
-{
-    coopdyn::RigidBodyState<double> state;
-    state.pose.position = random_vector(3, rng);
-    state.pose.orientation = random_unit_quaternion(rng);
-    state.twist = random_vector(6, rng);
-    return state;
-}
+// Random models with known positive gains: random_model and random_state of sample_systems.hpp
+// (default ranges).
 
 struct RoundTrip {
     double stiffness = 0.0;  // |K(synthesized) - K_target| / |K_target| through apparent_impedance
@@ -240,22 +202,14 @@ TEST(ImpedanceSynthesis, WorkedNumbersOfTheModelPage)
 
     // Section V beam: r_1,2 = (0, -+0.4, 0), K = diag(600 I3, 196, 100, 196) from k_i = 300,
     // kappa_i = 50; D = diag(360 I3, 77.6, 20, 77.6) from d_i = 180, delta_i = 10 ((59), (61)).
-    coopdyn::RigidObject<double> beam;
-    beam.mass = 1.75;
-    beam.inertia_body = Eigen::Vector3d(0.055, 0.0, 0.055).asDiagonal();
-    std::vector<Model2::ArmType> arms(2);
-    for (Index i = 0; i < 2; ++i) {
-        auto& e = arms[static_cast<std::size_t>(i)].end_effector;
-        e.mass = 10.0;
-        e.rotational_inertia = 0.5 * Matrix3d::Identity();
-        e.translational_damping = 1.0;  // deliberately wrong: the synthesis must find 180 / 10
-        e.rotational_damping = 1.0;
-        e.translational_stiffness = 1.0;  // ... and 300 / 50
-        e.rotational_stiffness = 1.0;
+    BeamParameters beam = section_five_beam();
+    for (ArmParameters& arm : beam.arms) {
+        arm.damping = 1.0;  // deliberately wrong: the synthesis must find 180 / 10
+        arm.rotational_damping = 1.0;
+        arm.stiffness = 1.0;  // ... and 300 / 50
+        arm.rotational_stiffness = 1.0;
     }
-    arms[0].grasp_body.position = Vector3d(0.0, -0.4, 0.0);
-    arms[1].grasp_body.position = Vector3d(0.0, 0.4, 0.0);
-    const Model2 model(beam, arms);
+    const Model2 model = make_model<Model2>(beam.object, beam.arms);
     coopdyn::Data<Model2> data(model);
     coopdyn::grasp_kinematics(model, data, coopdyn::RigidBodyState<double>{});
     Vector6d stiffness_diagonal;
@@ -555,19 +509,12 @@ TEST(ClassicalDamping, FedToSynthesisReachableOnlyWhenTheStructureAllowsIt)
 {
     // Paper beam (section V): classical damping of its (M, K) is diagonal but its rotational part
     // is not of the form (sum d_i) S S^T + (sum delta_i) I3: reported unreachable, with residual.
-    coopdyn::RigidObject<double> beam;
-    beam.mass = 1.75;
-    beam.inertia_body = Eigen::Vector3d(0.055, 0.0, 0.055).asDiagonal();
-    std::vector<Model2::ArmType> arms(2);
-    for (auto& arm : arms) {
-        arm.end_effector.mass = 10.0;
-        arm.end_effector.rotational_inertia = 0.5 * Matrix3d::Identity();
-        arm.end_effector.translational_stiffness = 300.0;
-        arm.end_effector.rotational_stiffness = 50.0;
+    BeamParameters beam = section_five_beam();
+    for (ArmParameters& arm : beam.arms) {
+        arm.damping = 0.0;  // undamped: the damping is what the synthesis is asked for
+        arm.rotational_damping = 0.0;
     }
-    arms[0].grasp_body.position = Vector3d(0.0, -0.4, 0.0);
-    arms[1].grasp_body.position = Vector3d(0.0, 0.4, 0.0);
-    const Model2 model(beam, arms);
+    const Model2 model = make_model<Model2>(beam.object, beam.arms);
     coopdyn::Data<Model2> data(model);
     coopdyn::grasp_kinematics(model, data, coopdyn::RigidBodyState<double>{});
     const double zeta = 0.7;

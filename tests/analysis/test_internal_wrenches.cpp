@@ -25,7 +25,7 @@
 #include "coopdyn/dynamics/cooperative_dynamics.hpp"
 #include "coopdyn/model/resolved_acceleration_end_effector.hpp"
 
-#include "../dynamics/random_systems.hpp"
+#include "sample_systems.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -362,48 +362,21 @@ TEST(InternalWrenches, FixedSizeEqualsDynamicSize)
 // ---------------------------------------------------------------------------------------------
 // C. Model/Data form: decompose_wrenches after interaction_dynamics.
 
-template <typename EndEffector> EndEffector make_end_effector(Rng& rng);
-
-template <> coopdyn::ImpedanceEndEffector<double> make_end_effector(Rng& rng)
+/// Random models (sample_systems.hpp): impedance gains d_i 50..200, delta_i 5..20, k_i 100..500,
+/// kappa_i 10..80; resolved-acceleration gains D_i = 20 I6 + U, K_i = 100 I6 + 5 U (U entries in
+/// [-1, 1]).
+SampleRanges decomposition_ranges()
 {
-    coopdyn::ImpedanceEndEffector<double> e;
-    e.mass = uniform(rng, 1.0, 10.0);
-    e.rotational_inertia = random_spd(3, rng, uniform(rng, 0.1, 1.0));
-    e.translational_damping = uniform(rng, 50.0, 200.0);
-    e.rotational_damping = uniform(rng, 5.0, 20.0);
-    e.translational_stiffness = uniform(rng, 100.0, 500.0);
-    e.rotational_stiffness = uniform(rng, 10.0, 80.0);
-    return e;
+    SampleRanges ranges;
+    ranges.impedance.translational_damping = {50.0, 200.0};
+    ranges.impedance.rotational_damping = {5.0, 20.0};
+    ranges.impedance.translational_stiffness = {100.0, 500.0};
+    ranges.impedance.rotational_stiffness = {10.0, 80.0};
+    return ranges;
 }
 
-template <> coopdyn::ResolvedAccelerationEndEffector<double> make_end_effector(Rng& rng)
-{
-    coopdyn::ResolvedAccelerationEndEffector<double> e;
-    e.apparent_inertia = random_spd(6, rng, uniform(rng, 0.5, 5.0));
-    e.derivative_gain = 20.0 * Matrix6d::Identity() + random_matrix(6, 6, rng);
-    e.proportional_gain = 100.0 * Matrix6d::Identity() + 5.0 * random_matrix(6, 6, rng);
-    return e;
-}
-
-template <typename ModelType> ModelType make_model(Index arms, unsigned seed)
-{
-    Rng rng(seed);
-    coopdyn::RigidObject<double> object;
-    object.mass = uniform(rng, 0.5, 3.0);
-    object.inertia_body = random_spd(3, rng, 0.1);
-    std::vector<typename ModelType::ArmType> list;
-    const MatrixXd r = random_offsets(arms, rng);
-    for (Index i = 0; i < arms; ++i) {
-        typename ModelType::ArmType arm;
-        arm.end_effector = make_end_effector<typename ModelType::EndEffectorModel>(rng);
-        arm.grasp_body.position = r.col(i);
-        arm.grasp_body.orientation = random_unit_quaternion(rng);
-        list.push_back(arm);
-    }
-    return ModelType(object, list);
-}
-
-coopdyn::RigidBodyState<double> random_state(Rng& rng)
+/// random_state with an angular velocity of at least 0.3 rad/s.
+coopdyn::RigidBodyState<double> random_spinning_state(Rng& rng)
 {
     coopdyn::RigidBodyState<double> state;
     state.pose.position = random_vector(3, rng);
@@ -416,14 +389,14 @@ coopdyn::RigidBodyState<double> random_state(Rng& rng)
 template <typename ModelType> void expect_decomposition_matches_kernel_and_literal(Index arms, unsigned seed)
 {
     constexpr int Arms = ModelType::arms_at_compile_time;
-    const ModelType model = make_model<ModelType>(arms, seed);
+    const ModelType model = random_model<ModelType>(arms, seed, decomposition_ranges());
     coopdyn::Data<ModelType> data(model);
     coopdyn::WrenchDecomposition<ModelType> decomposition(model);
     Rng rng(seed + 1);
     double worst_kernel = 0.0;
     double worst_literal = 0.0;
     for (int trial = 0; trial < 5; ++trial) {
-        const coopdyn::RigidBodyState<double> state = random_state(rng);
+        const coopdyn::RigidBodyState<double> state = random_spinning_state(rng);
         // Setpoints that are not coordinated: generic (squeezing) motion wrenches.
         coopdyn::Setpoints<double, Arms> setpoints(arms);
         for (Index i = 0; i < arms; ++i) {
@@ -498,12 +471,12 @@ TEST(DecomposeWrenches, ResolvedAccelerationEndEffectorsMatchKernelAndLiteral)
 template <typename ModelType> void expect_coordinated_motion_carries_load_without_squeezing(Index arms, unsigned seed)
 {
     constexpr int Arms = ModelType::arms_at_compile_time;
-    const ModelType model = make_model<ModelType>(arms, seed);
+    const ModelType model = random_model<ModelType>(arms, seed, decomposition_ranges());
     coopdyn::Data<ModelType> data(model);
     coopdyn::WrenchDecomposition<ModelType> decomposition(model);
     const coopdyn::LoadDistribution<ModelType> load(model);
     Rng rng(seed + 1);
-    const coopdyn::RigidBodyState<double> desired = random_state(rng);
+    const coopdyn::RigidBodyState<double> desired = random_spinning_state(rng);
     const Vector6d desired_acceleration = random_vector(6, rng, -3.0, 3.0);
 
     coopdyn::Setpoints<double, Arms> setpoints(arms);
@@ -554,12 +527,12 @@ TEST(DecomposeWrenches, CoordinatedSetpointsAndLoadDistributionGiveNoInternalWre
 template <typename ModelType> void expect_pulled_apart_setpoints_squeeze(Index arms, unsigned seed)
 {
     constexpr int Arms = ModelType::arms_at_compile_time;
-    const ModelType model = make_model<ModelType>(arms, seed);
+    const ModelType model = random_model<ModelType>(arms, seed, decomposition_ranges());
     coopdyn::Data<ModelType> data(model);
     coopdyn::WrenchDecomposition<ModelType> decomposition(model);
     const coopdyn::LoadDistribution<ModelType> load(model);
     Rng rng(seed + 1);
-    const coopdyn::RigidBodyState<double> desired = random_state(rng);
+    const coopdyn::RigidBodyState<double> desired = random_spinning_state(rng);
     const Vector6d desired_acceleration = random_vector(6, rng, -3.0, 3.0);
 
     coopdyn::Setpoints<double, Arms> setpoints(arms);
@@ -614,10 +587,9 @@ TEST(DecomposeWrenches, TwoIdenticalArmsStretchingABeamAnalytic)
     Rng rng(401);
     const double length = 0.4;
     const double stretch = 0.02;
-    coopdyn::ImpedanceEndEffector<double> end_effector = make_end_effector<coopdyn::ImpedanceEndEffector<double>>(rng);
-    coopdyn::RigidObject<double> object;
-    object.mass = 1.75;
-    object.inertia_body = Eigen::Vector3d(0.055, 1e-4, 0.055).asDiagonal();
+    coopdyn::ImpedanceEndEffector<double> end_effector =
+        random_end_effector<coopdyn::ImpedanceEndEffector<double>>(rng, decomposition_ranges());
+    const coopdyn::RigidObject<double> object = section_five_beam(1e-4).object;
     std::vector<ModelType::ArmType> arms(2);
     arms[0].end_effector = end_effector;
     arms[0].grasp_body.position = Vector3d(-length, 0.0, 0.0);
@@ -699,14 +671,14 @@ template <typename ModelType> void expect_full_tick_does_not_allocate(Index arms
 {
     constexpr int Arms = ModelType::arms_at_compile_time;
     // Construction may allocate (Model, Data, workspaces, inputs).
-    const ModelType model = make_model<ModelType>(arms, 601);
+    const ModelType model = random_model<ModelType>(arms, 601, decomposition_ranges());
     coopdyn::Data<ModelType> data(model);
     coopdyn::WrenchDecomposition<ModelType> decomposition(model);
     const coopdyn::LoadDistribution<ModelType> load(model);
     coopdyn::Setpoints<double, Arms> setpoints(arms);
     coopdyn::Disturbances<double, Arms> disturbances(arms);
     Rng rng(602);
-    const coopdyn::RigidBodyState<double> desired = random_state(rng);
+    const coopdyn::RigidBodyState<double> desired = random_spinning_state(rng);
     const Vector6d desired_acceleration = random_vector(6, rng);
     coopdyn::RigidBodyState<double> state = desired;
     state.pose.position += 0.01 * Vector3d(random_vector(3, rng));
@@ -742,11 +714,11 @@ TEST(NoAllocation, FullTickDynamicThreeArms)
 template <typename ModelType> void expect_general_decomposition_does_not_allocate(Index arms)
 {
     constexpr int Arms = ModelType::arms_at_compile_time;
-    const ModelType model = make_model<ModelType>(arms, 701);
+    const ModelType model = random_model<ModelType>(arms, 701, decomposition_ranges());
     coopdyn::Data<ModelType> data(model);
     coopdyn::WrenchDecomposition<ModelType> decomposition(model);
     Rng rng(702);
-    const coopdyn::RigidBodyState<double> state = random_state(rng);
+    const coopdyn::RigidBodyState<double> state = random_spinning_state(rng);
     coopdyn::Setpoints<double, Arms> setpoints(arms);
     setpoints.positions = random_matrix(3, arms, rng);
     const coopdyn::Disturbances<double, Arms> disturbances(arms);

@@ -16,7 +16,7 @@
 #include "coopdyn/dynamics/cooperative_dynamics.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
 
-#include "../dynamics/random_systems.hpp"
+#include "sample_systems.hpp"
 
 #include <gtest/gtest.h>
 
@@ -37,10 +37,16 @@ template struct coopdyn::Modes<float>;
 namespace {
 
 using coopdyn::Index;
+using coopdyn_test::ArmParameters;
 using coopdyn_test::hat;
+using coopdyn_test::make_model;
 using coopdyn_test::Matrix6d;
+using coopdyn_test::random_arms;
+using coopdyn_test::random_object;
 using coopdyn_test::relative_error;
 using coopdyn_test::Rng;
+using coopdyn_test::rotation_exponential;
+using coopdyn_test::rotation_matrix;
 using coopdyn_test::uniform;
 using coopdyn_test::Vector6d;
 using Eigen::Matrix3d;
@@ -57,26 +63,7 @@ using State = coopdyn::RigidBodyState<double>;
 // Helpers
 // ---------------------------------------------------------------------------------------------
 
-Matrix3d rotation_matrix(const Quaterniond& q)
-{
-    const double w = q.w(), x = q.x(), y = q.y(), z = q.z();
-    Matrix3d r;
-    r << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),  //
-        2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),  //
-        2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
-    return r;
-}
-
-Quaterniond rotation_exponential(const Vector3d& rotation_vector)
-{
-    const double angle = rotation_vector.norm();
-    if (angle == 0.0) {
-        return Quaterniond::Identity();
-    }
-    const Vector3d axis = rotation_vector / angle;
-    const double s = std::sin(angle / 2);
-    return Quaterniond(std::cos(angle / 2), s * axis.x(), s * axis.y(), s * axis.z());
-}
+// rotation_matrix, rotation_exponential: sample_systems.hpp.
 
 /// Pose displaced by a world-frame twist displacement [dp; dtheta], twist replaced by `twist`.
 State displaced(const State& state, const Vector6d& delta, const Vector6d& twist)
@@ -88,59 +75,7 @@ State displaced(const State& state, const Vector6d& delta, const Vector6d& twist
     return result;
 }
 
-struct ArmParameters {
-    double mass = 0.0;
-    Matrix3d inertia = Matrix3d::Zero();
-    double damping = 0.0;
-    double rotational_damping = 0.0;
-    double stiffness = 0.0;
-    double rotational_stiffness = 0.0;
-    Vector3d offset_body = Vector3d::Zero();
-    Quaterniond grasp_orientation = Quaterniond::Identity();
-};
-
-std::vector<ArmParameters> random_arms(Index arms, Rng& rng)
-{
-    const MatrixXd offsets = coopdyn_test::random_offsets(arms, rng);
-    std::vector<ArmParameters> result(static_cast<std::size_t>(arms));
-    for (Index i = 0; i < arms; ++i) {
-        ArmParameters& arm = result[static_cast<std::size_t>(i)];
-        arm.mass = uniform(rng, 1.0, 12.0);
-        arm.inertia = coopdyn_test::random_spd(3, rng, 0.05);
-        arm.damping = uniform(rng, 20.0, 200.0);
-        arm.rotational_damping = uniform(rng, 1.0, 15.0);
-        arm.stiffness = uniform(rng, 100.0, 600.0);
-        arm.rotational_stiffness = uniform(rng, 10.0, 80.0);
-        arm.offset_body = offsets.col(i);
-        arm.grasp_orientation = coopdyn_test::random_unit_quaternion(rng);
-    }
-    return result;
-}
-
-coopdyn::RigidObject<double> random_object(Rng& rng)
-{
-    coopdyn::RigidObject<double> object;
-    object.mass = uniform(rng, 1.0, 3.0);
-    object.inertia_body = coopdyn_test::random_spd(3, rng, 0.03);
-    return object;
-}
-
-ModelX make_model(const coopdyn::RigidObject<double>& object, const std::vector<ArmParameters>& arms)
-{
-    std::vector<ModelX::ArmType> list;
-    for (const ArmParameters& p : arms) {
-        ModelX::ArmType arm;
-        arm.end_effector.mass = p.mass;
-        arm.end_effector.rotational_inertia = p.inertia;
-        arm.end_effector.translational_damping = p.damping;
-        arm.end_effector.rotational_damping = p.rotational_damping;
-        arm.end_effector.translational_stiffness = p.stiffness;
-        arm.end_effector.rotational_stiffness = p.rotational_stiffness;
-        arm.grasp_body = coopdyn::Pose<double>(p.offset_body, p.grasp_orientation);
-        list.push_back(arm);
-    }
-    return ModelX(object, list, Vector3d::Zero());  // zero gravity: no compensation needed
-}
+// ArmParameters, random_arms, random_object (analysis ranges) and make_model: sample_systems.hpp.
 
 /// A model with its equilibrium (object at rest, setpoints at the grasp poses (38)).
 struct System {
@@ -154,7 +89,7 @@ struct System {
 System make_system(const coopdyn::RigidObject<double>& object, const std::vector<ArmParameters>& arms,
                    const State& equilibrium)
 {
-    ModelX model = make_model(object, arms);
+    ModelX model = make_model<ModelX>(object, arms, Vector3d::Zero());  // zero gravity: no compensation needed
     coopdyn::Setpoints<double, coopdyn::Dynamic> setpoints(model.arms());
     coopdyn::Data<ModelX> data(model);
     coopdyn::grasp_kinematics(model, data, equilibrium);
@@ -179,22 +114,14 @@ System random_system(Index arms_count, Rng& rng)
 /// the gains can be changed to make an underdamped variant.
 System section_five_beam(double damping = 180.0, double rotational_damping = 10.0)
 {
-    coopdyn::RigidObject<double> object;
-    object.mass = 1.75;
-    object.inertia_body = Vector3d(0.055, 0.0, 0.055).asDiagonal();
-    std::vector<ArmParameters> arms(2);
-    for (std::size_t i = 0; i < 2; ++i) {
-        arms[i].mass = 10.0;
-        arms[i].inertia = 0.5 * Matrix3d::Identity();
-        arms[i].damping = damping;
-        arms[i].rotational_damping = rotational_damping;
-        arms[i].stiffness = 300.0;
-        arms[i].rotational_stiffness = 50.0;
-        arms[i].offset_body = Vector3d(0.0, i == 0 ? -0.4 : 0.4, 0.0);
+    coopdyn_test::BeamParameters beam = coopdyn_test::section_five_beam();
+    for (ArmParameters& arm : beam.arms) {
+        arm.damping = damping;
+        arm.rotational_damping = rotational_damping;
     }
     State equilibrium;
     equilibrium.pose.position = Vector3d(0.2, 0.0, 1.0);
-    return make_system(object, arms, equilibrium);
+    return make_system(beam.object, beam.arms, equilibrium);
 }
 
 /// Largest |computed - expected| over a one-to-one nearest matching, each relative to |expected|.
@@ -518,9 +445,7 @@ TEST(StabilityClassicalDamping, ZeroForTheSymmetricBeamNonzeroForAnAsymmetricGra
 
     // Asymmetric two-arm grasp: the beam's object, arms at different distances and heights with
     // different gains and gain ratios (d_i / k_i differ, so D is not a combination of M and K).
-    coopdyn::RigidObject<double> object;
-    object.mass = 1.75;
-    object.inertia_body = Vector3d(0.055, 0.0, 0.055).asDiagonal();
+    const coopdyn::RigidObject<double> object = coopdyn_test::section_five_beam().object;
     std::vector<ArmParameters> arms(2);
     arms[0] = ArmParameters{10.0, 0.5 * Matrix3d::Identity(), 180.0, 10.0, 300.0, 50.0, Vector3d(0.05, -0.3, 0.0),
                             Quaterniond::Identity()};

@@ -4,7 +4,7 @@
 // with the load distribution (26) (docs/coordination.md).
 //
 // References the code was not derived from:
-//  - the literal grasp matrix G and bias b of random_systems.hpp, and the rigid-grasp poses
+//  - the literal grasp matrix G and bias b of sample_systems.hpp, and the rigid-grasp poses
 //    written out here with a hand-written rotation matrix;
 //  - central finite differences in time (Richardson-extrapolated) of end-effector poses along a
 //    closed-form object trajectory with nonzero angular velocity and angular acceleration;
@@ -20,7 +20,7 @@
 #include "coopdyn/dynamics/simulator.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
 
-#include "../dynamics/random_systems.hpp"
+#include "sample_systems.hpp"
 
 #include <gtest/gtest.h>
 
@@ -35,6 +35,7 @@
 
 namespace {
 
+using coopdyn_test::axis_angle;
 using coopdyn_test::hat;
 using coopdyn_test::literal_constraint_bias;
 using coopdyn_test::literal_grasp_matrix;
@@ -42,10 +43,10 @@ using coopdyn_test::literal_internal_wrench;
 using coopdyn_test::Matrix3d;
 using coopdyn_test::MatrixXd;
 using coopdyn_test::random_offsets;
-using coopdyn_test::random_spd;
 using coopdyn_test::random_unit_quaternion;
 using coopdyn_test::random_vector;
 using coopdyn_test::relative_error;
+using coopdyn_test::rotation_matrix;
 using coopdyn_test::Rng;
 using coopdyn_test::uniform;
 using coopdyn_test::Vector3d;
@@ -59,23 +60,7 @@ using State = coopdyn::RigidBodyState<double>;
 // Hand-written rotations (independent of Eigen's and coopdyn's conversions)
 // ---------------------------------------------------------------------------------------------
 
-/// Rotation matrix of a unit quaternion, written out.
-Matrix3d rotation_matrix(const Quat& q)
-{
-    const double w = q.w(), x = q.x(), y = q.y(), z = q.z();
-    Matrix3d r;
-    r << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),  //
-        2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),  //
-        2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
-    return r;
-}
-
-/// Unit quaternion of the rotation by `angle` about the unit vector `axis`.
-Quat axis_angle(double angle, const Vector3d& axis)
-{
-    const double s = std::sin(angle / 2);
-    return Quat(std::cos(angle / 2), s * axis.x(), s * axis.y(), s * axis.z());
-}
+// rotation_matrix and axis_angle (unit axis) are the written-out ones of sample_systems.hpp.
 
 /// Rotation vector (angle times axis) of a unit quaternion, the shorter way round.
 Vector3d rotation_vector(const Quat& q)
@@ -197,25 +182,20 @@ struct Trajectory {
 // ---------------------------------------------------------------------------------------------
 
 /// Random object and arms (different masses, inertias and gains per arm) at the given body-frame
-/// grasp offsets, each with a random relative orientation dq_i.
+/// grasp offsets, each with a random relative orientation dq_i (random_model_at).
 template <typename ModelType> ModelType build_model(const MatrixXd& offsets_body, Rng& rng)
 {
-    coopdyn::RigidObject<double> object;
-    object.mass = uniform(rng, 0.8, 3.0);
-    object.inertia_body = random_spd(3, rng, 0.03, 0.3);
-    std::vector<typename ModelType::ArmType> arms;
-    for (Index i = 0; i < offsets_body.cols(); ++i) {
-        typename ModelType::ArmType arm;
-        arm.end_effector.mass = uniform(rng, 1.0, 10.0);
-        arm.end_effector.rotational_inertia = random_spd(3, rng, uniform(rng, 0.05, 0.5), 0.2);
-        arm.end_effector.translational_damping = uniform(rng, 30.0, 200.0);
-        arm.end_effector.rotational_damping = uniform(rng, 2.0, 12.0);
-        arm.end_effector.translational_stiffness = uniform(rng, 150.0, 700.0);
-        arm.end_effector.rotational_stiffness = uniform(rng, 15.0, 70.0);
-        arm.grasp_body = coopdyn::Pose<double>(Vector3d(offsets_body.col(i)), random_unit_quaternion(rng));
-        arms.push_back(arm);
-    }
-    return ModelType(object, arms);
+    coopdyn_test::SampleRanges ranges;
+    ranges.object.mass = {0.8, 3.0};
+    ranges.object.inertia_scale = {0.03, 0.03};
+    ranges.object.inertia_floor = 0.3;
+    ranges.impedance.inertia_scale = {0.05, 0.5};
+    ranges.impedance.inertia_floor = 0.2;
+    ranges.impedance.translational_damping = {30.0, 200.0};
+    ranges.impedance.rotational_damping = {2.0, 12.0};
+    ranges.impedance.translational_stiffness = {150.0, 700.0};
+    ranges.impedance.rotational_stiffness = {15.0, 70.0};
+    return coopdyn_test::random_model_at<ModelType>(offsets_body, rng, ranges);
 }
 
 /// Grasp offsets of the object in {w} at `orientation`, by the hand-written rotation.

@@ -3,7 +3,7 @@
 // docs/coordination.md, the desired end-effector wrenches (26), and the LoadDistribution class.
 //
 // Every check compares with something the code was not derived from:
-//  - the literal grasp matrix G (24) of random_systems.hpp: G G+_M = I6;
+//  - the literal grasp matrix G (24) of sample_systems.hpp: G G+_M = I6;
 //  - the weighted least-norm right inverse W G^T (G W G^T)^-1, W = blkdiag(M*_i), a second,
 //    dense method (the distribution (26) minimises sum_i hbar_i^T (M*_i)^-1 hbar_i subject to
 //    G hbar = h_o; its Lagrange conditions give that formula, with no centroid shift at all);
@@ -18,7 +18,7 @@
 #include "coopdyn/dynamics/cooperative_dynamics.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
 
-#include "../dynamics/random_systems.hpp"
+#include "sample_systems.hpp"
 
 #include <gtest/gtest.h>
 
@@ -43,6 +43,7 @@ using coopdyn_test::relative_constraint_bias;
 using coopdyn_test::relative_constraint_matrix;
 using coopdyn_test::Matrix3d;
 using coopdyn_test::MatrixXd;
+using coopdyn_test::off_centre_offsets;
 using coopdyn_test::random_offsets;
 using coopdyn_test::random_spd;
 using coopdyn_test::random_unit_quaternion;
@@ -73,18 +74,6 @@ Weights random_weights(Index arms, Rng& rng)
         weights.inertia.block(0, 3 * i, 3, 3) = random_spd(3, rng, uniform(rng, 0.05, 0.5), 0.2);
     }
     return weights;
-}
-
-/// Random non-symmetric grasp offsets with a common shift, so that the weighted centroid
-/// sum m*_i r_i / m*_o lies well away from the object's centre of mass (exercises the shift of
-/// docs/coordination.md).
-MatrixXd off_centre_offsets(Index arms, Rng& rng)
-{
-    MatrixXd r = random_offsets(arms, rng);
-    // |shift| = 1.5 exceeds every |r_i| <= 1, so |c| >= 0.5 whatever the weights.
-    const Vector3d shift = 1.5 * Vector3d(random_vector(3, rng)).normalized();
-    r.colwise() += shift;
-    return r;
 }
 
 Vector3d weighted_centroid(const MatrixXd& r, const VectorXd& mass)
@@ -600,26 +589,19 @@ TEST(LoadDistributionValidation, EveryDegenerateGraspIsRefusedAndNearlyDegenerat
     EXPECT_LT(worst_scaled_error, 1.0);
 }
 
-/// Random arm parameters with the given grasp offsets in the body frame.
+/// Random arm parameters with the given grasp offsets in the body frame (random_model_at).
 template <typename ModelType>
 ModelType build_model(const MatrixXd& offsets_body, Rng& rng)
 {
-    coopdyn::RigidObject<double> object;
-    object.mass = uniform(rng, 0.5, 3.0);
-    object.inertia_body = random_spd(3, rng, 0.05);
-    std::vector<typename ModelType::ArmType> arms;
-    for (Index i = 0; i < offsets_body.cols(); ++i) {
-        typename ModelType::ArmType arm;
-        arm.end_effector.mass = uniform(rng, 1.0, 10.0);
-        arm.end_effector.rotational_inertia = random_spd(3, rng, uniform(rng, 0.05, 0.5), 0.2);
-        arm.end_effector.translational_damping = uniform(rng, 20.0, 200.0);
-        arm.end_effector.rotational_damping = uniform(rng, 1.0, 10.0);
-        arm.end_effector.translational_stiffness = uniform(rng, 100.0, 600.0);
-        arm.end_effector.rotational_stiffness = uniform(rng, 10.0, 60.0);
-        arm.grasp_body = coopdyn::Pose<double>(Vector3d(offsets_body.col(i)), random_unit_quaternion(rng));
-        arms.push_back(arm);
-    }
-    return ModelType(object, arms);
+    coopdyn_test::SampleRanges ranges;
+    ranges.object.inertia_scale = {0.05, 0.05};
+    ranges.impedance.inertia_scale = {0.05, 0.5};
+    ranges.impedance.inertia_floor = 0.2;
+    ranges.impedance.translational_damping = {20.0, 200.0};
+    ranges.impedance.rotational_damping = {1.0, 10.0};
+    ranges.impedance.translational_stiffness = {100.0, 600.0};
+    ranges.impedance.rotational_stiffness = {10.0, 60.0};
+    return coopdyn_test::random_model_at<ModelType>(offsets_body, rng, ranges);
 }
 
 TEST(LoadDistributionValidation, ClassRefusesDegenerateWeightsNamingParameterAndArm)

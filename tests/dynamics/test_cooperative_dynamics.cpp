@@ -7,7 +7,7 @@
 #include "coopdyn/dynamics/udwadia_kalaba.hpp"
 #include "coopdyn/model/resolved_acceleration_end_effector.hpp"
 
-#include "random_systems.hpp"
+#include "sample_systems.hpp"
 
 #include <Eigen/Cholesky>
 #include <gtest/gtest.h>
@@ -51,22 +51,22 @@ Matrix3d rotation(const Quat& q)
 }
 
 // ---------------------------------------------------------------------------------------------
-// Random parameters.
-void randomise(Impedance& e, Rng& rng)
+// Random parameters: wide ranges, and resolved-acceleration gains that are arbitrary (not even
+// definite) matrices.
+SampleRanges end_effector_ranges()
 {
-    e.mass = uniform(rng, 0.5, 10.0);
-    e.rotational_inertia = random_spd(3, rng, uniform(rng, 0.05, 1.0), 0.2);
-    e.translational_damping = uniform(rng, 1.0, 200.0);
-    e.rotational_damping = uniform(rng, 0.5, 20.0);
-    e.translational_stiffness = uniform(rng, 10.0, 500.0);
-    e.rotational_stiffness = uniform(rng, 5.0, 100.0);
-}
-
-void randomise(ResolvedAcceleration& e, Rng& rng)
-{
-    e.apparent_inertia = random_spd(6, rng, uniform(rng, 0.5, 10.0));
-    e.derivative_gain = random_matrix(6, 6, rng, -20.0, 20.0);
-    e.proportional_gain = random_matrix(6, 6, rng, -100.0, 100.0);
+    SampleRanges ranges;
+    ranges.impedance.mass = {0.5, 10.0};
+    ranges.impedance.inertia_scale = {0.05, 1.0};
+    ranges.impedance.inertia_floor = 0.2;
+    ranges.impedance.translational_damping = {1.0, 200.0};
+    ranges.impedance.rotational_damping = {0.5, 20.0};
+    ranges.impedance.translational_stiffness = {10.0, 500.0};
+    ranges.impedance.rotational_stiffness = {5.0, 100.0};
+    ranges.resolved_acceleration.inertia_scale = {0.5, 10.0};
+    ranges.resolved_acceleration.derivative_gain = {0.0, 1.0, -20.0, 20.0};
+    ranges.resolved_acceleration.proportional_gain = {0.0, 1.0, -100.0, 100.0};
+    return ranges;
 }
 
 /// Everything random about one evaluation, stored in plain (dynamic) form.
@@ -97,7 +97,7 @@ template <typename EndEffector> Scenario<EndEffector> random_scenario(Index arms
     s.gravity = Vector3d(uniform(rng, -1.0, 1.0), uniform(rng, -1.0, 1.0), uniform(rng, -10.5, -9.0));
     s.end_effectors.resize(static_cast<std::size_t>(arms));
     for (EndEffector& e : s.end_effectors) {
-        randomise(e, rng);
+        e = random_end_effector<EndEffector>(rng, end_effector_ranges());
     }
     s.r_body = random_offsets(arms, rng);
     for (Index i = 0; i < arms; ++i) {

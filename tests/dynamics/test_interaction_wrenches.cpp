@@ -5,7 +5,7 @@
 #include "coopdyn/dynamics/udwadia_kalaba.hpp"
 #include "coopdyn/model/grasp.hpp"
 
-#include "random_systems.hpp"
+#include "sample_systems.hpp"
 
 #include <Eigen/Cholesky>
 #include <gtest/gtest.h>

@@ -12,7 +12,7 @@
 #include "coopdyn/dynamics/udwadia_kalaba.hpp"
 #include "coopdyn/model/resolved_acceleration_end_effector.hpp"
 
-#include "random_systems.hpp"
+#include "sample_systems.hpp"
 
 #include <gtest/gtest.h>
 
@@ -85,60 +85,27 @@ TEST(NoAllocationSanity, EigenHeapAllocationIsDetected)
 // ---------------------------------------------------------------------------------------------
 // Model/Data per-tick path.
 
-template <typename EndEffector> EndEffector make_end_effector(Rng& rng);
-
-template <> coopdyn::ImpedanceEndEffector<double> make_end_effector(Rng& rng)
+/// Random models (sample_systems.hpp) with constant gains: m_o = 1.5, Lambda_i = 2 (B B^T + 0.5 I6),
+/// D_i = 20 I6, K_i = 100 I6; impedance d_i, delta_i, k_i, kappa_i = 100, 10, 300, 50.
+SampleRanges constant_gains()
 {
-    coopdyn::ImpedanceEndEffector<double> e;
-    e.mass = uniform(rng, 1.0, 10.0);
-    e.rotational_inertia = random_spd(3, rng, 0.5);
-    e.translational_damping = 100.0;
-    e.rotational_damping = 10.0;
-    e.translational_stiffness = 300.0;
-    e.rotational_stiffness = 50.0;
-    return e;
-}
-
-template <> coopdyn::ResolvedAccelerationEndEffector<double> make_end_effector(Rng& rng)
-{
-    coopdyn::ResolvedAccelerationEndEffector<double> e;
-    e.apparent_inertia = random_spd(6, rng, 2.0);
-    e.derivative_gain = 20.0 * Matrix6d::Identity();
-    e.proportional_gain = 100.0 * Matrix6d::Identity();
-    return e;
-}
-
-template <typename ModelType> ModelType make_model(Index arms, unsigned seed)
-{
-    Rng rng(seed);
-    coopdyn::RigidObject<double> object;
-    object.mass = 1.5;
-    object.inertia_body = random_spd(3, rng, 0.1);
-    std::vector<typename ModelType::ArmType> list;
-    const MatrixXd r = random_offsets(arms, rng);
-    for (Index i = 0; i < arms; ++i) {
-        typename ModelType::ArmType arm;
-        arm.end_effector = make_end_effector<typename ModelType::EndEffectorModel>(rng);
-        arm.grasp_body.position = r.col(i);
-        arm.grasp_body.orientation = random_unit_quaternion(rng);
-        list.push_back(arm);
-    }
-    return ModelType(object, list);
-}
-
-coopdyn::RigidBodyState<double> random_state(Rng& rng)
-{
-    coopdyn::RigidBodyState<double> state;
-    state.pose.position = random_vector(3, rng);
-    state.pose.orientation = random_unit_quaternion(rng);
-    state.twist = random_vector(6, rng);
-    return state;
+    SampleRanges ranges;
+    ranges.object.mass = {1.5, 1.5};
+    ranges.impedance.inertia_scale = {0.5, 0.5};
+    ranges.impedance.translational_damping = {100.0, 100.0};
+    ranges.impedance.rotational_damping = {10.0, 10.0};
+    ranges.impedance.translational_stiffness = {300.0, 300.0};
+    ranges.impedance.rotational_stiffness = {50.0, 50.0};
+    ranges.resolved_acceleration.inertia_scale = {2.0, 2.0};
+    ranges.resolved_acceleration.derivative_gain = {20.0, 0.0};
+    ranges.resolved_acceleration.proportional_gain = {100.0, 0.0};
+    return ranges;
 }
 
 template <typename ModelType> void expect_per_tick_path_does_not_allocate(Index arms)
 {
     constexpr int Arms = ModelType::arms_at_compile_time;
-    const ModelType model = make_model<ModelType>(arms, 11);
+    const ModelType model = random_model<ModelType>(arms, 11u, constant_gains());
     coopdyn::Data<ModelType> data(model);
     Rng rng(12);
     const coopdyn::RigidBodyState<double> state = random_state(rng);
@@ -268,7 +235,7 @@ TEST(NoAllocation, FixedSizeInteractionWrenches)
 
 template <typename ModelType> void expect_simulator_step_does_not_allocate(Index arms, coopdyn::Integrator integrator)
 {
-    const ModelType model = make_model<ModelType>(arms, 30);
+    const ModelType model = random_model<ModelType>(arms, 30u, constant_gains());
     Rng rng(31);
     coopdyn::Simulator<ModelType> simulator(model, 1e-3, random_state(rng), integrator);
     simulator.setpoints().positions = random_matrix(3, arms, rng);

@@ -15,6 +15,8 @@
 #include "coopdyn/model/impedance_end_effector.hpp"
 #include "coopdyn/model/rigid_object.hpp"
 
+#include "sample_systems.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -31,6 +33,17 @@ namespace {
 
 using coopdyn::Index;
 using coopdyn::Integrator;
+using coopdyn_test::ArmParameters;
+using coopdyn_test::asymmetric_arms;
+using coopdyn_test::asymmetric_object;
+using coopdyn_test::axis_angle;
+using coopdyn_test::BeamParameters;
+using coopdyn_test::gaussian_quaternion_wxyz;
+using coopdyn_test::make_model;
+using coopdyn_test::make_state;
+using coopdyn_test::rotation_angle_between;
+using coopdyn_test::rotation_matrix;
+using coopdyn_test::section_five_beam;
 using Vec3 = Eigen::Vector3d;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat3 = Eigen::Matrix3d;
@@ -51,120 +64,9 @@ const Vec3 kGravity(0.0, 0.0, -9.81);
 // Helpers (written independently of the library's own kinematics).
 // ---------------------------------------------------------------------------------------------
 
-Quat random_quaternion(std::mt19937& rng)
-{
-    std::normal_distribution<double> normal(0.0, 1.0);
-    Quat q(normal(rng), normal(rng), normal(rng), normal(rng));
-    q.normalize();
-    return q;
-}
-
-/// Unit quaternion of the rotation by `angle` about `axis` (normalised), by hand.
-Quat axis_angle(double angle, const Vec3& axis)
-{
-    const Vec3 u = axis.normalized();
-    return Quat(std::cos(angle / 2), std::sin(angle / 2) * u.x(), std::sin(angle / 2) * u.y(),
-                std::sin(angle / 2) * u.z());
-}
-
-/// Rotation matrix of a unit quaternion, written out (not Eigen's toRotationMatrix).
-Mat3 rotation_matrix(const Quat& q)
-{
-    const double w = q.w(), x = q.x(), y = q.y(), z = q.z();
-    Mat3 r;
-    r << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),  //
-        2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),  //
-        2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
-    return r;
-}
-
-/// Angle of the rotation taking b to a (sign-invariant).
-double rotation_angle_between(const Quat& a, const Quat& b)
-{
-    const Quat e = a * b.conjugate();
-    return 2.0 * std::atan2(e.vec().norm(), std::abs(e.w()));
-}
-
-struct ArmParameters {
-    double mass;
-    Mat3 inertia;
-    double damping;
-    double rotational_damping;
-    double stiffness;
-    double rotational_stiffness;
-    Vec3 offset_body;
-    Quat grasp_orientation;
-};
-
-/// Three deliberately different arms at asymmetric offsets (seeded perturbations on top).
-std::array<ArmParameters, 3> asymmetric_arms(std::mt19937& rng, bool isotropic_inertia)
-{
-    std::uniform_real_distribution<double> jitter(-0.03, 0.03);
-    const std::array<double, 3> masses{2.0, 3.5, 5.0};
-    const std::array<double, 3> inertias{0.04, 0.07, 0.10};
-    const std::array<double, 3> damping{20.0, 35.0, 50.0};
-    const std::array<double, 3> rotational_damping{1.5, 2.5, 4.0};
-    const std::array<double, 3> stiffness{150.0, 260.0, 340.0};
-    const std::array<double, 3> rotational_stiffness{12.0, 25.0, 40.0};
-    const std::array<Vec3, 3> offsets{Vec3(0.30, 0.05, 0.00), Vec3(-0.12, 0.25, 0.06),
-                                      Vec3(-0.10, -0.20, -0.08)};
-    std::array<ArmParameters, 3> arms{};
-    for (std::size_t i = 0; i < 3; ++i) {
-        ArmParameters& arm = arms[i];
-        arm.mass = masses[i];
-        if (isotropic_inertia) {
-            arm.inertia = inertias[i] * Mat3::Identity();
-        } else {
-            const Mat3 r = rotation_matrix(random_quaternion(rng));
-            arm.inertia = r * Vec3(inertias[i], 1.4 * inertias[i], 0.7 * inertias[i]).asDiagonal() *
-                          r.transpose();
-        }
-        arm.damping = damping[i];
-        arm.rotational_damping = rotational_damping[i];
-        arm.stiffness = stiffness[i];
-        arm.rotational_stiffness = rotational_stiffness[i];
-        arm.offset_body = offsets[i] + Vec3(jitter(rng), jitter(rng), jitter(rng));
-        arm.grasp_orientation = random_quaternion(rng);
-    }
-    return arms;
-}
-
-coopdyn::RigidObject<double> asymmetric_object(std::mt19937& rng)
-{
-    coopdyn::RigidObject<double> object;
-    object.mass = 1.5;
-    const Mat3 r = rotation_matrix(random_quaternion(rng));
-    object.inertia_body = r * Vec3(0.02, 0.035, 0.05).asDiagonal() * r.transpose();
-    return object;
-}
-
-template <typename ModelType, std::size_t N>
-ModelType make_model(const coopdyn::RigidObject<double>& object, const std::array<ArmParameters, N>& arms,
-                     const Vec3& gravity)
-{
-    std::vector<typename ModelType::ArmType> list;
-    for (const ArmParameters& p : arms) {
-        typename ModelType::ArmType arm;
-        arm.end_effector.mass = p.mass;
-        arm.end_effector.rotational_inertia = p.inertia;
-        arm.end_effector.translational_damping = p.damping;
-        arm.end_effector.rotational_damping = p.rotational_damping;
-        arm.end_effector.translational_stiffness = p.stiffness;
-        arm.end_effector.rotational_stiffness = p.rotational_stiffness;
-        arm.grasp_body = coopdyn::Pose<double>(p.offset_body, p.grasp_orientation);
-        list.push_back(arm);
-    }
-    return ModelType(object, list, gravity);
-}
-
-State make_state(const Vec3& position, const Quat& orientation, const Vec6& twist)
-{
-    State state;
-    state.pose.position = position;
-    state.pose.orientation = orientation;
-    state.twist = twist;
-    return state;
-}
+// gaussian_quaternion_wxyz, axis_angle (unit axis), rotation_matrix and rotation_angle_between
+// (written out), ArmParameters, the three asymmetric_arms, asymmetric_object, make_model and
+// make_state: sample_systems.hpp.
 
 Vec6 tumbling_twist()
 {
@@ -223,7 +125,7 @@ struct ConservativeSystem {
         }
         const coopdyn::RigidObject<double> object = asymmetric_object(rng);
         Model3 model = make_model<Model3>(object, arms, kGravity);
-        const State initial = make_state(Vec3(0.1, -0.05, 0.2), random_quaternion(rng), tumbling_twist());
+        const State initial = make_state(Vec3(0.1, -0.05, 0.2), gaussian_quaternion_wxyz(rng), tumbling_twist());
         // Setpoints: each arm's grasp pose at the initial object pose, displaced by 4-6 cm and
         // rotated by 0.3-0.5 rad about a random axis, so every spring starts loaded.
         Setpoints3 setpoints(3);
@@ -233,7 +135,7 @@ struct ConservativeSystem {
         for (Index i = 0; i < 3; ++i) {
             const Vec3 shift = Vec3(unit(rng), unit(rng), unit(rng)).normalized() * (0.04 + 0.01 * double(i));
             const Quat twist_q =
-                axis_angle(0.3 + 0.1 * double(i), Vec3(unit(rng), unit(rng), unit(rng)));
+                axis_angle(0.3 + 0.1 * double(i), Vec3(unit(rng), unit(rng), unit(rng)).normalized());
             const coopdyn::Pose<double> pose = data.end_effector_pose(i);
             setpoints.set_pose(i, coopdyn::Pose<double>(Vec3(pose.position + shift), twist_q * pose.orientation));
         }
@@ -396,7 +298,7 @@ TEST(SimulatorFreeFall, GravityCompensatedArmsSlowTheAssemblyToMassRatioTimesG)
         const Model3 model = free_fall_model(rng, balanced);
         const double m = total_mass(model);
         const Vec3 a = model.object().mass / m * kGravity;
-        const State initial = make_state(Vec3(0.3, -0.2, 1.0), random_quaternion(rng), Vec6::Zero());
+        const State initial = make_state(Vec3(0.3, -0.2, 1.0), gaussian_quaternion_wxyz(rng), Vec6::Zero());
         const double dt = 1e-3;
         Sim3 sim(model, dt, initial, Integrator::runge_kutta_4);
         Data3 data(model);
@@ -447,7 +349,7 @@ TEST(SimulatorFreeFall, ArmsCarryingTheirWeightFallAtGWithoutInteraction)
     const Model3 model = free_fall_model(rng, /*balanced=*/false);
     for (const bool via_disturbance : {true, false}) {
         SCOPED_TRACE(via_disturbance ? "weight as disturbance htilde_i" : "weight as desired wrench h_i^d");
-        const State initial = make_state(Vec3(-0.4, 0.25, 2.0), random_quaternion(rng), Vec6::Zero());
+        const State initial = make_state(Vec3(-0.4, 0.25, 2.0), gaussian_quaternion_wxyz(rng), Vec6::Zero());
         const double dt = 1e-3;
         Sim3 sim(model, dt, initial, Integrator::runge_kutta_4);
         for (Index i = 0; i < 3; ++i) {
@@ -505,7 +407,7 @@ TEST(SimulatorMomentum, FreeTumblingAssemblyConservesMomentaAndKineticEnergy)
         arm.damping = arm.rotational_damping = arm.stiffness = arm.rotational_stiffness = 0.0;
     }
     const Model3 model = make_model<Model3>(asymmetric_object(rng), arms, Vec3::Zero());
-    const State initial = make_state(Vec3(0.5, -0.3, 0.8), random_quaternion(rng), tumbling_twist());
+    const State initial = make_state(Vec3(0.5, -0.3, 0.8), gaussian_quaternion_wxyz(rng), tumbling_twist());
     Sim3 sim(model, 1e-3, initial, Integrator::runge_kutta_4);
     Data3 data(model);
     coopdyn::grasp_kinematics(model, data, initial);
@@ -611,13 +513,13 @@ ConvergenceSystem convergence_system()
     std::mt19937 rng(4242u);
     const auto arms = asymmetric_arms(rng, /*isotropic_inertia=*/false);  // damped, springs on
     Model3 model = make_model<Model3>(asymmetric_object(rng), arms, kGravity);
-    const State initial = make_state(Vec3(0.0, 0.1, 0.3), random_quaternion(rng), tumbling_twist());
+    const State initial = make_state(Vec3(0.0, 0.1, 0.3), gaussian_quaternion_wxyz(rng), tumbling_twist());
     Setpoints3 setpoints(3);
     Data3 data(model);
     coopdyn::grasp_kinematics(model, data, initial);
     for (Index i = 0; i < 3; ++i) {
         setpoints.set_pose(i, coopdyn::Pose<double>(Vec3(data.end_effector_positions.col(i) + Vec3(0.02, -0.03, 0.01)),
-                                                    axis_angle(0.2, Vec3(1, 2, 3)) * data.end_effector_pose(i).orientation));
+                                                    axis_angle(0.2, Vec3(1, 2, 3).normalized()) * data.end_effector_pose(i).orientation));
     }
     MultisineInputs inputs{Vec3(setpoints.positions.col(0))};
     return ConvergenceSystem{std::move(model), setpoints, initial, inputs};
@@ -682,15 +584,8 @@ struct Beam {
 
 Beam section9_beam()
 {
-    coopdyn::RigidObject<double> object;
-    object.mass = 1.75;
-    object.inertia_body = Vec3(0.055, 1e-4, 0.055).asDiagonal();
-    std::array<ArmParameters, 2> arms{};
-    for (std::size_t i = 0; i < 2; ++i) {
-        arms[i] = ArmParameters{10.0, 0.5 * Mat3::Identity(), 180.0, 10.0, 300.0, 50.0,
-                                Vec3(0.0, i == 0 ? -0.4 : 0.4, 0.0), Quat::Identity()};
-    }
-    Model2 model = make_model<Model2>(object, arms, kGravity);
+    const BeamParameters beam = section_five_beam(1e-4);  // J_o invertible for the simulation
+    Model2 model = make_model<Model2>(beam.object, beam.arms, kGravity);
     const State equilibrium = make_state(Vec3(0.2, 0.0, 1.0), Quat::Identity(), Vec6::Zero());
     coopdyn::Setpoints<double, 2> setpoints(2);
     coopdyn::Data<Model2> data(model);
@@ -701,7 +596,7 @@ Beam section9_beam()
         // must push UP on the object, hbar_i = -(1/2) m_o g (g points down), so the wrench ON arm i
         // is h_i = -hbar_i = +(1/2) [m_o g; 0], pointing down. At rest at the setpoint (1) gives
         // h_i = h_i^d, hence h_i^d = +(1/2) [m_o g; 0] = (0, 0, -8.584 N; 0).
-        setpoints.wrench(i).head<3>() = 0.5 * object.mass * kGravity;
+        setpoints.wrench(i).head<3>() = 0.5 * beam.object.mass * kGravity;
     }
     return Beam{std::move(model), equilibrium, setpoints};
 }

@@ -4,7 +4,7 @@
 // subsystem of redundant / rank-deficient constraints.
 #include "coopdyn/dynamics/udwadia_kalaba.hpp"
 
-#include "random_systems.hpp"
+#include "sample_systems.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>

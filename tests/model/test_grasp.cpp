@@ -7,6 +7,8 @@
 
 #include "coopdyn/model/grasp.hpp"
 
+#include "sample_systems.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -33,6 +35,10 @@ using Matrix3d = Eigen::Matrix3d;
 using Vector3d = Eigen::Vector3d;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Eigen::Dynamic;
+using coopdyn_test::gaussian_quaternion;
+using coopdyn_test::random_vector;
+using coopdyn_test::random_vector6;
+using coopdyn_test::vee_skew_part;
 
 // --- Compile-time dimensions -----------------------------------------------------------------
 
@@ -80,37 +86,14 @@ static_assert(std::is_same_v<decltype(coopdyn::centripetal_acceleration(std::dec
 
 // --- Helpers ---------------------------------------------------------------------------------
 
-Vector3d random_vector(std::mt19937& rng, double scale = 1.0)
-{
-    std::uniform_real_distribution<double> uniform(-scale, scale);
-    return Vector3d(uniform(rng), uniform(rng), uniform(rng));
-}
-
-Vector6d random_vector6(std::mt19937& rng, double scale = 1.0)
-{
-    Vector6d result;
-    result << random_vector(rng, scale), random_vector(rng, scale);
-    return result;
-}
-
-Matrix3d random_rotation(std::mt19937& rng)
-{
-    std::normal_distribution<double> normal(0.0, 1.0);
-    return Eigen::Quaterniond(Eigen::Vector4d(normal(rng), normal(rng), normal(rng), normal(rng)).normalized())
-        .toRotationMatrix();
-}
+// random_vector(rng, scale), random_vector6, gaussian_quaternion and vee_skew_part:
+// sample_systems.hpp.
 
 /// Rotation matrix exp(S(phi)) from Eigen::AngleAxis.
 Matrix3d exact_exp(const Vector3d& phi)
 {
     const double angle = phi.norm();
     return angle == 0.0 ? Matrix3d::Identity() : Eigen::AngleAxisd(angle, phi / angle).toRotationMatrix();
-}
-
-Vector3d vee(const Matrix3d& m)
-{
-    // Vector of the skew-symmetric part.
-    return 0.5 * Vector3d(m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1));
 }
 
 /// Fourth-order central first and second derivatives at t = 0.
@@ -138,7 +121,8 @@ struct RigidMotion {
 RigidMotion random_motion(std::mt19937& rng)
 {
     return RigidMotion{random_vector(rng), random_vector(rng, 2.0), random_vector(rng, 3.0),
-                       random_vector(rng, 2.0), random_vector(rng, 4.0), random_rotation(rng)};
+                       random_vector(rng, 2.0), random_vector(rng, 4.0),
+                       gaussian_quaternion(rng).toRotationMatrix()};
 }
 
 /// Numerically differentiated kinematics of a frame attached to the object at body offset
@@ -161,10 +145,10 @@ FrameDerivatives differentiate_frame(const RigidMotion& motion, const Vector3d& 
     const Matrix3d Rdot = first_derivative(frame, h);
     const Matrix3d Rddot = second_derivative(frame, h);
     FrameDerivatives result;
-    result.twist << first_derivative(point, h), vee(Rdot * R.transpose());
+    result.twist << first_derivative(point, h), vee_skew_part(Rdot * R.transpose());
     // w = vee(Rdot R^T), wdot = vee(Rddot R^T + Rdot Rdot^T) = vee(Rddot R^T) (the second term is
     // symmetric).
-    result.acceleration << second_derivative(point, h), vee(Rddot * R.transpose());
+    result.acceleration << second_derivative(point, h), vee_skew_part(Rddot * R.transpose());
     return result;
 }
 
@@ -203,7 +187,8 @@ TEST(GraspKinematics, ConstraintReproducesTrueGraspPointAccelerations)
         Eigen::Matrix<double, 6 * arms, 1> true_twists;
         Eigen::Matrix<double, 6 * arms, 1> true_accelerations;
         for (int i = 0; i < arms; ++i) {
-            const FrameDerivatives frame = differentiate_frame(motion, r_body.col(i), random_rotation(rng));
+            const FrameDerivatives frame =
+                differentiate_frame(motion, r_body.col(i), gaussian_quaternion(rng).toRotationMatrix());
             true_twists.segment<6>(6 * i) = frame.twist;
             true_accelerations.segment<6>(6 * i) = frame.acceleration;
         }

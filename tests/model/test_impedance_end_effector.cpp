@@ -8,6 +8,8 @@
 #include "coopdyn/model/impedance_end_effector.hpp"
 #include "coopdyn/model/resolved_acceleration_end_effector.hpp"
 
+#include "sample_systems.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -39,30 +41,15 @@ using Quaterniond = Eigen::Quaterniond;
 using Vector3d = Eigen::Vector3d;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Pose = coopdyn::Pose<double>;
+using coopdyn_test::gaussian_quaternion;
+using coopdyn_test::random_vector;
+using coopdyn_test::random_vector6;
 
-
-Vector3d random_vector(std::mt19937& rng, double scale = 1.0)
-{
-    std::uniform_real_distribution<double> uniform(-scale, scale);
-    return Vector3d(uniform(rng), uniform(rng), uniform(rng));
-}
-
-Vector6d random_vector6(std::mt19937& rng, double scale = 1.0)
-{
-    Vector6d result;
-    result << random_vector(rng, scale), random_vector(rng, scale);
-    return result;
-}
-
-Quaterniond random_quaternion(std::mt19937& rng)
-{
-    std::normal_distribution<double> normal(0.0, 1.0);
-    return Quaterniond(Eigen::Vector4d(normal(rng), normal(rng), normal(rng), normal(rng)).normalized());
-}
+// random_vector(rng, scale), random_vector6 and gaussian_quaternion: sample_systems.hpp.
 
 Pose random_pose(std::mt19937& rng)
 {
-    return Pose{random_vector(rng, 0.5), random_quaternion(rng)};
+    return Pose{random_vector(rng, 0.5), gaussian_quaternion(rng)};
 }
 
 Matrix3d random_spd3(std::mt19937& rng)

@@ -1,8 +1,9 @@
 // Construction-time validation of coopdyn::Model (model/cooperative_model.hpp,
-// detail/validation.hpp) and coopdyn::Simulator (dynamics/simulator.hpp): every invalid parameter
-// is refused with coopdyn::InvalidModel whose message names the parameter and the body ("object",
-// "arm i", "model", "simulator"); valid parameters are kept exactly as given (nothing clamped or
-// normalised).
+// detail/validation.hpp) and coopdyn::Simulator (dynamics/simulator.hpp): every invalid model
+// parameter is refused with coopdyn::InvalidModel, every invalid simulator input (time step,
+// initial state) with coopdyn::InvalidArgument, whose message names the parameter and the body
+// ("object", "arm i", "model", "simulator"); valid parameters are kept exactly as given (nothing
+// clamped or normalised).
 
 #include "coopdyn/dynamics/simulator.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
@@ -86,14 +87,15 @@ std::vector<ResolvedArm> valid_resolved_arms()
     return arms;
 }
 
-/// Runs `build`, expects InvalidModel whose what() contains every string in `needles`.
-template <typename Build>
+/// Runs `build`, expects `Expected` (InvalidModel unless given) whose what() contains every string
+/// in `needles`.
+template <typename Expected = coopdyn::InvalidModel, typename Build>
 void expect_invalid(Build&& build, std::initializer_list<const char*> needles, const char* label)
 {
     try {
         build();
         ADD_FAILURE() << label << ": no exception thrown";
-    } catch (const coopdyn::InvalidModel& error) {
+    } catch (const Expected& error) {
         const std::string message = error.what();
         for (const char* needle : needles) {
             EXPECT_NE(message.find(needle), std::string::npos)
@@ -426,8 +428,9 @@ TEST(SimulatorValidation, RefusesNonPositiveTimeStep)
     const Model2 model(valid_object(), valid_impedance_arms());
     const coopdyn::RigidBodyState<double> state{};
     for (const double dt : {0.0, -1e-3, nan, inf}) {
-        expect_invalid([&] { coopdyn::Simulator<Model2> simulator(model, dt, state); },
-                       {"simulator", "'time_step'"}, ("time step " + std::to_string(dt)).c_str());
+        expect_invalid<coopdyn::InvalidArgument>([&] { coopdyn::Simulator<Model2> simulator(model, dt, state); },
+                                                 {"simulator", "'time_step'"},
+                                                 ("time step " + std::to_string(dt)).c_str());
     }
     EXPECT_NO_THROW({ coopdyn::Simulator<Model2> simulator(model, 1e-3, state); });
 }
@@ -439,13 +442,13 @@ TEST(SimulatorValidation, RefusesNonUnitInitialQuaternion)
                                  Quaterniond(nan, 0.0, 0.0, 0.0)}) {
         coopdyn::RigidBodyState<double> state{};
         state.pose.orientation = q;
-        expect_invalid([&] { coopdyn::Simulator<ModelX> simulator(model, 1e-3, state); },
-                       {"simulator", "'state.pose.orientation'"}, "initial quaternion");
+        expect_invalid<coopdyn::InvalidArgument>([&] { coopdyn::Simulator<ModelX> simulator(model, 1e-3, state); },
+                                                 {"simulator", "'state.pose.orientation'"}, "initial quaternion");
     }
     coopdyn::RigidBodyState<double> state{};
     state.twist(4) = nan;
-    expect_invalid([&] { coopdyn::Simulator<ModelX> simulator(model, 1e-3, state); }, {"simulator", "'state.twist'"},
-                   "initial twist");
+    expect_invalid<coopdyn::InvalidArgument>([&] { coopdyn::Simulator<ModelX> simulator(model, 1e-3, state); },
+                                             {"simulator", "'state.twist'"}, "initial twist");
 }
 
 }  // namespace
