@@ -103,6 +103,13 @@ constexpr bool sizes_agree(int a, int b) noexcept
 
 }  // namespace coopdyn
 
+/// Forces inlining of the small 3-vector helpers of the per-tick path (cross products, scalings,
+/// the shift of a motion or force). Why: g++ 12 keeps some of them out of line; their 3-vector
+/// arguments then travel through memory, stored as scalars and reloaded by its SLP vectoriser as
+/// 2-wide packets that straddle those stores (a store-to-load forwarding stall per call). Inlined,
+/// the operands stay in registers. clang++ inlines them anyway. See docs/performance.md.
+#define COOPDYN_INLINE EIGEN_ALWAYS_INLINE
+
 /// Debug-only check inside noexcept per-tick code. Define COOPDYN_DISABLE_ASSERTS to remove them
 /// from debug builds too; NDEBUG removes them as usual.
 #if defined(COOPDYN_DISABLE_ASSERTS)

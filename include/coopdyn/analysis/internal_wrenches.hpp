@@ -47,9 +47,11 @@ void solve_internal_wrenches(const EndEffectorInertias& end_effectors, const Eig
 {
     using Scalar = typename DerivedMotion::Scalar;
     COOPDYN_ASSERT(h_motion.size() == 6 * r.cols(), "h_motion must have 6N entries");
+    Motion<Scalar> virtual_acceleration;  // a_v of (53)
     Force<Scalar> no_object_wrench;
     solve_interaction(element_inertia_t<EndEffectorInertias>::Zero(), end_effectors, r, omega_o,
-                      Force<Scalar>::Zero(), h_motion, rigid_accelerations_out, internal_out, no_object_wrench);
+                      Force<Scalar>::Zero(), h_motion, rigid_accelerations_out, internal_out, virtual_acceleration,
+                      no_object_wrench);
 }
 
 /// Number of arms of an internal-wrench call, fixed when r or h_motion fixes it.
@@ -64,8 +66,8 @@ template <typename DerivedR, typename DerivedMotion> constexpr int internal_arms
 
 /// \brief Internal end-effector wrenches h'_int of paper (53), structured O(N) form, written into
 /// caller storage with the commanded rigid accelerations. Never allocates; noexcept.
-/// \param ee_inertias the M_i: a container of SpatialInertia or ArticulatedInertia (one per arm),
-///        or a dense 6 x 6N stack of SPD blocks; the inertias' type chooses the solver's path.
+/// \param ee_inertias the M_i: a container of CentralInertia, SpatialInertia or ArticulatedInertia
+///        (one per arm), or a dense 6 x 6N stack of SPD blocks; the inertias' type chooses the solver's path.
 /// \param r 3 x N grasp offsets r_i in {w} (from the object's reference point).
 /// \param omega_o object angular velocity in {w} (3); b_i = [w_o x (w_o x r_i); 0].
 /// \param h_motion 6N, the motion wrenches h_i^x of (6) (or h_i^Pi of (20)) stacked.

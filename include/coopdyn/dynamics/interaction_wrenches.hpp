@@ -103,18 +103,20 @@ template <typename Composite, typename Inertia> Composite composite_from(const I
 }
 
 /// The structured solve (docs/dynamics.md), for any inertia structure. Writes the arms'
-/// accelerations and wrenches (6N each) and returns the object's acceleration; the object's wrench
-/// goes to `object_wrench`.
+/// accelerations and wrenches (6N each) and the object's acceleration and wrench. The object's
+/// acceleration is a local copied out at the end, not the return value: returned, it lives in the
+/// caller's memory, and g++ 12 reloads it in the second loop with packet loads that straddle its
+/// scalar stores (a store-forwarding stall per arm).
 template <typename ObjectInertia, typename EndEffectorInertias, typename DerivedR, typename DerivedOmega,
           typename DerivedSigma, typename DerivedAcceleration, typename DerivedWrench>
-Motion<typename DerivedSigma::Scalar>
-solve_interaction(const ObjectInertia& object, const EndEffectorInertias& end_effectors,
+void solve_interaction(const ObjectInertia& object, const EndEffectorInertias& end_effectors,
                   const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedOmega>& omega_o,
                   const Force<typename DerivedSigma::Scalar>& object_h_sigma,
                   const Eigen::MatrixBase<DerivedSigma>& arm_h_sigma,
                   const Eigen::MatrixBase<DerivedAcceleration>& arm_accelerations_out,
                   const Eigen::MatrixBase<DerivedWrench>& arm_wrenches_out,
-                  Force<typename DerivedSigma::Scalar>& object_wrench) noexcept
+                  Motion<typename DerivedSigma::Scalar>& object_acceleration_out,
+                  Force<typename DerivedSigma::Scalar>& object_wrench_out) noexcept
 {
     using Scalar = typename DerivedSigma::Scalar;
     using Composite = composite_inertia_t<ObjectInertia, element_inertia_t<EndEffectorInertias>>;
@@ -143,7 +145,6 @@ solve_interaction(const ObjectInertia& object, const EndEffectorInertias& end_ef
     }
 
     const Motion<Scalar> object_acceleration = composite.solve(rhs);
-    object_wrench = object * object_acceleration - object_h_sigma;
     for (Index i = 0; i < arms; ++i) {
         const Vector3<Scalar> r_i(r(0, i), r(1, i), r(2, i));
         // xdd_i = G_i^T xdd_o + b_i, h_i = M_i xdd_i - hSigma_i
@@ -153,7 +154,8 @@ solve_interaction(const ObjectInertia& object, const EndEffectorInertias& end_ef
         (end_effectors[static_cast<std::size_t>(i)] * acceleration - Force<Scalar>::from(arm_h_sigma.template segment<6>(6 * i)))
             .write_to(arm_wrenches.template segment<6>(6 * i));
     }
-    return object_acceleration;
+    object_acceleration_out = object_acceleration;
+    object_wrench_out = object * object_acceleration - object_h_sigma;
 }
 
 /// The end-effector part (last 6N entries) of a 6(N+1) stack, fixed-size when N is.
@@ -178,10 +180,11 @@ template <typename DerivedR, typename DerivedSigma> constexpr int kernel_arms() 
 
 /// \brief Accelerations and interaction wrenches of the rigid grasp, written into caller-owned
 /// storage (docs/dynamics.md; equals (18)). Never allocates; noexcept.
-/// \param object_inertia M_o in {w}: a SpatialInertia (e.g. diag(m_o I3, J_o)), an
-///        ArticulatedInertia, or a dense 6x6 SPD matrix.
-/// \param ee_inertias the M_i: a container of SpatialInertia or ArticulatedInertia (one per arm),
-///        or a dense 6 x 6N stack of SPD blocks.
+/// \param object_inertia M_o in {w}: a CentralInertia (diag(m_o I3, J_o), (9)), a
+///        SpatialInertia, an ArticulatedInertia, or a dense 6x6 SPD matrix.
+/// \param ee_inertias the M_i: a container of CentralInertia, SpatialInertia or
+///        ArticulatedInertia (one per arm), or a dense 6 x 6N stack of SPD blocks; the inertias'
+///        type chooses the solver's path (CentralInertia throughout is the fast one).
 /// \param r 3 x N grasp offsets r_i in {w}.
 /// \param omega_o object angular velocity in {w} (3).
 /// \param h_sigma 6(N+1): [hSigma_o; hSigma_1; ...; hSigma_N] of (15)-(16).
@@ -203,11 +206,12 @@ void interaction_wrenches(const ObjectInertia& object_inertia, const EndEffector
     // Eigen's documented idiom for writable expression arguments (blocks, maps, matrices).
     auto& accelerations = const_cast<Eigen::MatrixBase<DerivedAcceleration>&>(accelerations_out);
     auto& wrenches = const_cast<Eigen::MatrixBase<DerivedWrench>&>(wrenches_out);
+    Motion<Scalar> object_acceleration;
     Force<Scalar> object_wrench;
-    const Motion<Scalar> object_acceleration = detail::solve_interaction(
-        detail::as_inertia(object_inertia), detail::as_inertia_sequence(ee_inertias), r, omega_o,
-        Force<Scalar>::from(h_sigma.template head<6>()), detail::arm_part<arms>(h_sigma),
-        detail::arm_part<arms>(accelerations), detail::arm_part<arms>(wrenches), object_wrench);
+    detail::solve_interaction(detail::as_inertia(object_inertia), detail::as_inertia_sequence(ee_inertias), r, omega_o,
+                              Force<Scalar>::from(h_sigma.template head<6>()), detail::arm_part<arms>(h_sigma),
+                              detail::arm_part<arms>(accelerations), detail::arm_part<arms>(wrenches),
+                              object_acceleration, object_wrench);
     object_acceleration.write_to(accelerations.template head<6>());
     object_wrench.write_to(wrenches.template head<6>());
 }

@@ -111,7 +111,7 @@ public:
     {
         return Eigen::Map<const Quaternion<Scalar>>(grasp_orientations_body_.col(arm).data());
     }
-    /// M_i of arm i, in the end-effector model's inertia type (SpatialInertia for impedance
+    /// M_i of arm i, in the end-effector model's inertia type (CentralInertia for impedance
     /// end-effectors, ArticulatedInertia for resolved-acceleration ones).
     const typename EndEffectorModel::Inertia& end_effector_inertia(Index arm) const noexcept
     {

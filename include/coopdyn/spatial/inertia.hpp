@@ -52,12 +52,13 @@ public:
         return result;
     }
     /// M a = [m v; I_c w].
-    Force<Scalar> operator*(const Motion<Scalar>& motion) const noexcept
+    COOPDYN_INLINE Force<Scalar> operator*(const Motion<Scalar>& motion) const noexcept
     {
         return Force<Scalar>::make(detail::scaled(mass_, motion.linear), rotational_ * motion.angular);
     }
     /// M [a; 0] = [m a; 0], the inertial force of a pure translational acceleration.
-    template <typename Derived> Force<Scalar> apply_translation(const Eigen::MatrixBase<Derived>& a) const noexcept
+    template <typename Derived>
+    COOPDYN_INLINE Force<Scalar> apply_translation(const Eigen::MatrixBase<Derived>& a) const noexcept
     {
         return Force<Scalar>::make(detail::scaled(mass_, a), Vector3<Scalar>::Zero());
     }
@@ -206,7 +207,7 @@ public:
     /// this += other.shifted(r) for a central inertia: mass, first moment m r and the
     /// parallel-axis term I_c + m S(r) S(r)^T (the fast path of the composite inertia).
     template <typename Derived>
-    void add_shifted(const CentralInertia<Scalar>& other, const Eigen::MatrixBase<Derived>& r) noexcept
+    COOPDYN_INLINE void add_shifted(const CentralInertia<Scalar>& other, const Eigen::MatrixBase<Derived>& r) noexcept
     {
         EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
         const Scalar m = other.mass();
@@ -251,7 +252,7 @@ public:
     /// w = I_c^-1 (t - c x f) and v = f / m + c x w (I_c = the rotational inertia about the
     /// centre of mass, the Schur complement of m I3). Precondition (asserted in debug builds):
     /// m > 0 and I_c positive definite.
-    Motion<Scalar> solve(const Force<Scalar>& force) const noexcept
+    COOPDYN_INLINE Motion<Scalar> solve(const Force<Scalar>& force) const noexcept
     {
         COOPDYN_ASSERT(mass_ > Scalar(0), "SpatialInertia::solve needs a positive mass");
         // In scalars (see detail::cross): this is the latency-critical step of the tick.

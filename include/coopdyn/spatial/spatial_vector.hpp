@@ -21,7 +21,7 @@ namespace detail {
 /// form) stores them as 2- or 4-wide packets that the next scalar loads straddle, a
 /// store-to-load forwarding stall that cost g++ 12 about a factor of 2 on the interaction solve.
 template <typename DerivedA, typename DerivedB>
-Vector3<typename DerivedA::Scalar> cross(const Eigen::MatrixBase<DerivedA>& a, const Eigen::MatrixBase<DerivedB>& b) noexcept
+COOPDYN_INLINE Vector3<typename DerivedA::Scalar> cross(const Eigen::MatrixBase<DerivedA>& a, const Eigen::MatrixBase<DerivedB>& b) noexcept
 {
     using Scalar = typename DerivedA::Scalar;
     const Scalar ax = a(0), ay = a(1), az = a(2), bx = b(0), by = b(1), bz = b(2);
@@ -30,7 +30,7 @@ Vector3<typename DerivedA::Scalar> cross(const Eigen::MatrixBase<DerivedA>& a, c
 
 /// s a written out in scalars (see cross).
 template <typename Derived>
-Vector3<typename Derived::Scalar> scaled(const typename Derived::Scalar& s, const Eigen::MatrixBase<Derived>& a) noexcept
+COOPDYN_INLINE Vector3<typename Derived::Scalar> scaled(const typename Derived::Scalar& s, const Eigen::MatrixBase<Derived>& a) noexcept
 {
     return Vector3<typename Derived::Scalar>(s * a(0), s * a(1), s * a(2));
 }
@@ -117,7 +117,7 @@ private:
 template <typename Scalar> struct Motion : detail::SpatialVectorBase<Motion<Scalar>, Scalar> {
     /// The same rigid motion seen at the point displaced by r from the reference point:
     /// [v + w x r; w] = G(r)^T xdot, the twist of grasp point i for r = r_i (10).
-    template <typename Derived> Motion at_point(const Eigen::MatrixBase<Derived>& r) const noexcept
+    template <typename Derived> COOPDYN_INLINE Motion at_point(const Eigen::MatrixBase<Derived>& r) const noexcept
     {
         EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
         const Vector3<Scalar> moment = detail::cross(this->angular, r);
@@ -138,7 +138,7 @@ template <typename Scalar> struct Motion : detail::SpatialVectorBase<Motion<Scal
 template <typename Scalar> struct Force : detail::SpatialVectorBase<Force<Scalar>, Scalar> {
     /// The same wrench, applied at the point displaced by r from the reference point, expressed
     /// about the reference point: [f; t + r x f] = G(r) h, the grasp map G_i of (24) for r = r_i.
-    template <typename Derived> Force shifted(const Eigen::MatrixBase<Derived>& r) const noexcept
+    template <typename Derived> COOPDYN_INLINE Force shifted(const Eigen::MatrixBase<Derived>& r) const noexcept
     {
         EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
         const Vector3<Scalar> moment = detail::cross(r, this->linear);
@@ -154,7 +154,7 @@ template <typename Scalar> struct Force : detail::SpatialVectorBase<Force<Scalar
 /// angular and linear acceleration give: omega x (omega x r) = S(omega)^2 r, the translational
 /// part of the constraint bias b_i of (13) (its rotational part is zero).
 template <typename DerivedR, typename DerivedOmega>
-Vector3<typename DerivedR::Scalar> centripetal_acceleration(const Eigen::MatrixBase<DerivedR>& r,
+COOPDYN_INLINE Vector3<typename DerivedR::Scalar> centripetal_acceleration(const Eigen::MatrixBase<DerivedR>& r,
                                                             const Eigen::MatrixBase<DerivedOmega>& omega) noexcept
 {
     EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedR, 3);

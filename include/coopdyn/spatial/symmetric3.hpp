@@ -137,7 +137,8 @@ public:
     /// can lose its sign from cond ~ 1e8 on), where a Cholesky factorisation stays at cond(S) eps.
     /// Precondition (asserted in debug builds): S positive definite, by Sylvester's criterion on
     /// the leading minors the cofactors already hold.
-    template <typename Derived> Vector3<Scalar> solve(const Eigen::MatrixBase<Derived>& b) const noexcept
+    template <typename Derived>
+    COOPDYN_INLINE Vector3<Scalar> solve(const Eigen::MatrixBase<Derived>& b) const noexcept
     {
         EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
         const Scalar c00 = yy * zz - zy * zy;
