@@ -16,6 +16,7 @@
 
 #include "coopdyn/spatial/inertia.hpp"
 #include "coopdyn/spatial/quaternion.hpp"
+#include "spatial_references.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -42,6 +43,17 @@ template class coopdyn::ArticulatedInertia<float>;
 
 namespace {
 
+using coopdyn_test::epsilon;
+using coopdyn_test::literal_grasp_map;
+using coopdyn_test::literal_skew;
+using coopdyn_test::random_rotation;
+using coopdyn_test::random_six;
+using coopdyn_test::random_vector;
+using coopdyn_test::relative_error;
+using coopdyn_test::round_to;
+using coopdyn_test::rounded;
+using coopdyn_test::scientific;
+
 using coopdyn::ArticulatedInertia;
 using coopdyn::CentralInertia;
 using coopdyn::Force;
@@ -54,47 +66,7 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using AutoDiff = Eigen::AutoDiffScalar<Eigen::VectorXd>;
 
-std::string scientific(double value)
-{
-    std::ostringstream stream;
-    stream << std::scientific << std::setprecision(2) << value;
-    return stream.str();
-}
-
-template <typename Scalar> double epsilon() { return static_cast<double>(std::numeric_limits<Scalar>::epsilon()); }
-
-/// x rounded to Scalar, back in double (through a volatile: g++ 12.2 -O2 folds some inlined
-/// double -> float -> double round trips to the identity).
-template <typename Scalar> double round_to(double x)
-{
-    volatile Scalar rounded_value = static_cast<Scalar>(x);
-    return static_cast<double>(rounded_value);
-}
-template <typename Scalar, typename Derived> typename Derived::PlainObject rounded(const Eigen::MatrixBase<Derived>& m)
-{
-    typename Derived::PlainObject result;
-    for (Eigen::Index k = 0; k < m.size(); ++k) {
-        result(k) = round_to<Scalar>(m(k));
-    }
-    return result;
-}
-
 // --- Literal references ----------------------------------------------------------------------------
-
-Matrix3d literal_skew(const Vector3d& a)
-{
-    Matrix3d s;
-    s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-    return s;
-}
-
-/// G(r) = [[I3, 0], [S(r), I3]], the grasp map of (24).
-Matrix6d literal_grasp_map(const Vector3d& r)
-{
-    Matrix6d g = Matrix6d::Identity();
-    g.block<3, 3>(3, 0) = literal_skew(r);
-    return g;
-}
 
 /// diag(R, R).
 Matrix6d literal_block_rotation(const Matrix3d& rotation)
@@ -152,26 +124,6 @@ struct PointMassBody {
         return inertia_about(centre()).bottomRightCorner<3, 3>();
     }
 };
-
-Vector3d random_vector(std::mt19937& rng, double scale = 1.0)
-{
-    std::uniform_real_distribution<double> uniform(-scale, scale);
-    return Vector3d(uniform(rng), uniform(rng), uniform(rng));
-}
-
-Vector6d random_six(std::mt19937& rng, double linear_scale, double angular_scale)
-{
-    Vector6d result;
-    result << random_vector(rng, linear_scale), random_vector(rng, angular_scale);
-    return result;
-}
-
-Matrix3d random_rotation(std::mt19937& rng)
-{
-    std::normal_distribution<double> normal(0.0, 1.0);
-    const Eigen::Vector4d coefficients(normal(rng), normal(rng), normal(rng), normal(rng));
-    return Eigen::Quaterniond(coefficients.normalized()).toRotationMatrix();
-}
 
 /// `count` point masses in [0.1, 2] kg spread over a box of the given half-extents around `centre`.
 PointMassBody random_body(std::mt19937& rng, int count, const Vector3d& extents, const Vector3d& centre)
@@ -234,13 +186,6 @@ template <typename Scalar> Matrix6d random_spd6(std::mt19937& rng, double scale 
     Matrix6d spd = scale * (factor * factor.transpose() + floor * Matrix6d::Identity());
     spd = rounded<Scalar>(spd);
     return 0.5 * (spd + spd.transpose());  // exact: both triangles are the same rounded numbers
-}
-
-/// max |a - b| / max |b|.
-template <typename A, typename B> double relative_error(const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>& b)
-{
-    const double scale = b.cwiseAbs().maxCoeff();
-    return (a - b).cwiseAbs().maxCoeff() / (scale > 0.0 ? scale : 1.0);
 }
 
 template <typename Inertia> Matrix6d dense(const Inertia& inertia) { return inertia.matrix().template cast<double>(); }

@@ -5,6 +5,7 @@
 // the Hamilton product is Eigen's.
 
 #include "coopdyn/spatial/quaternion.hpp"
+#include "spatial_references.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,13 +19,8 @@
 
 namespace {
 
-/// Scientific notation for recorded measurements.
-std::string scientific(double value)
-{
-    std::ostringstream stream;
-    stream << std::scientific << std::setprecision(2) << value;
-    return stream.str();
-}
+using coopdyn_test::random_vector;
+using coopdyn_test::scientific;
 
 using coopdyn::Quaternion;
 using coopdyn::Vector3;
@@ -33,12 +29,6 @@ using Quaterniond = Eigen::Quaterniond;
 using Vector3d = Eigen::Vector3d;
 
 constexpr double pi = 3.14159265358979323846;
-
-Vector3d random_vector(std::mt19937& rng, double scale = 1.0)
-{
-    std::uniform_real_distribution<double> uniform(-scale, scale);
-    return Vector3d(uniform(rng), uniform(rng), uniform(rng));
-}
 
 Quaterniond random_quaternion(std::mt19937& rng)
 {

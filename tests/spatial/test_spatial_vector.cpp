@@ -11,6 +11,7 @@
 #include "coopdyn/config.hpp"
 #include "coopdyn/spatial/quaternion.hpp"
 #include "coopdyn/spatial/spatial_vector.hpp"
+#include "spatial_references.hpp"
 
 #include <unsupported/Eigen/AutoDiff>
 
@@ -36,6 +37,15 @@ template struct coopdyn::detail::SpatialVectorBase<coopdyn::Force<float>, float>
 
 namespace {
 
+using coopdyn_test::epsilon;
+using coopdyn_test::literal_grasp_map;
+using coopdyn_test::literal_skew;
+using coopdyn_test::random_six;
+using coopdyn_test::random_vector;
+using coopdyn_test::round_to;
+using coopdyn_test::rounded;
+using coopdyn_test::scientific;
+
 using coopdyn::Force;
 using coopdyn::Motion;
 using Eigen::Matrix3d;
@@ -50,59 +60,6 @@ constexpr double pi = 3.14159265358979323846;
 static_assert(coopdyn::pi<double>() == pi);
 static_assert(coopdyn::pi<float>() == static_cast<float>(pi));
 static_assert(coopdyn::pi() == pi, "double by default");
-
-std::string scientific(double value)
-{
-    std::ostringstream stream;
-    stream << std::scientific << std::setprecision(2) << value;
-    return stream.str();
-}
-
-template <typename Scalar> double epsilon() { return static_cast<double>(std::numeric_limits<Scalar>::epsilon()); }
-
-/// x rounded to Scalar, back in double (through a volatile: g++ 12.2 -O2 folds some inlined
-/// double -> float -> double round trips to the identity).
-template <typename Scalar> double round_to(double x)
-{
-    volatile Scalar rounded_value = static_cast<Scalar>(x);
-    return static_cast<double>(rounded_value);
-}
-template <typename Scalar, typename Derived> typename Derived::PlainObject rounded(const Eigen::MatrixBase<Derived>& m)
-{
-    typename Derived::PlainObject result;
-    for (Eigen::Index k = 0; k < m.size(); ++k) {
-        result(k) = round_to<Scalar>(m(k));
-    }
-    return result;
-}
-
-Matrix3d literal_skew(const Vector3d& a)
-{
-    Matrix3d s;
-    s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-    return s;
-}
-
-/// The grasp map of (24), G(r) = [[I3, 0], [S(r), I3]], written out.
-Matrix6d literal_grasp_map(const Vector3d& r)
-{
-    Matrix6d g = Matrix6d::Identity();
-    g.block<3, 3>(3, 0) = literal_skew(r);
-    return g;
-}
-
-Vector3d random_vector(std::mt19937& rng, double scale = 1.0)
-{
-    std::uniform_real_distribution<double> uniform(-scale, scale);
-    return Vector3d(uniform(rng), uniform(rng), uniform(rng));
-}
-
-Vector6d random_six(std::mt19937& rng, double linear_scale, double angular_scale)
-{
-    Vector6d result;
-    result << random_vector(rng, linear_scale), random_vector(rng, angular_scale);
-    return result;
-}
 
 Quaterniond random_quaternion(std::mt19937& rng)
 {

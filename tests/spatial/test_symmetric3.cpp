@@ -8,6 +8,7 @@
 
 #include "coopdyn/spatial/skew.hpp"
 #include "coopdyn/spatial/symmetric3.hpp"
+#include "spatial_references.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -31,40 +32,19 @@ template class coopdyn::Symmetric3<Eigen::AutoDiffScalar<Eigen::VectorXd>>;
 
 namespace {
 
+using coopdyn_test::epsilon;
+using coopdyn_test::literal_skew;
+using coopdyn_test::random_rotation;
+using coopdyn_test::random_vector;
+using coopdyn_test::relative_error;
+using coopdyn_test::round_to;
+using coopdyn_test::rounded;
+using coopdyn_test::scientific;
+
 using coopdyn::Symmetric3;
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using AutoDiff = Eigen::AutoDiffScalar<Eigen::VectorXd>;
-
-std::string scientific(double value)
-{
-    std::ostringstream stream;
-    stream << std::scientific << std::setprecision(2) << value;
-    return stream.str();
-}
-
-template <typename Scalar> double epsilon() { return static_cast<double>(std::numeric_limits<Scalar>::epsilon()); }
-
-/// Literal cross-product matrix, S(a) b = a x b (not coopdyn::skew).
-Matrix3d literal_skew(const Vector3d& a)
-{
-    Matrix3d s;
-    s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-    return s;
-}
-
-Vector3d random_vector(std::mt19937& rng, double scale = 1.0)
-{
-    std::uniform_real_distribution<double> uniform(-scale, scale);
-    return Vector3d(uniform(rng), uniform(rng), uniform(rng));
-}
-
-Matrix3d random_rotation(std::mt19937& rng)
-{
-    std::normal_distribution<double> normal(0.0, 1.0);
-    const Eigen::Vector4d coefficients(normal(rng), normal(rng), normal(rng), normal(rng));
-    return Eigen::Quaterniond(coefficients.normalized()).toRotationMatrix();
-}
 
 /// Symmetric (not necessarily definite) random matrix, entries in [-scale, scale].
 Matrix3d random_symmetric(std::mt19937& rng, double scale = 1.0)
@@ -89,33 +69,8 @@ Matrix3d random_spd(std::mt19937& rng, double scale, double condition)
     return 0.5 * (m + m.transpose());
 }
 
-/// x rounded to Scalar, back in double. Entry by entry through a volatile: g++ 12.2 at -O2
-/// miscompiles m.cast<float>().cast<double>() of a 3x3 when its SLP vectoriser inlines it (some
-/// lanes come back unrounded; fine with -fno-tree-slp-vectorize or clang).
-template <typename Scalar> double round_to(double x)
-{
-    volatile Scalar rounded_value = static_cast<Scalar>(x);
-    return static_cast<double>(rounded_value);
-}
-/// The matrix as Scalar, then back in double: the reference sees exactly what Scalar holds.
-template <typename Scalar, typename Derived> typename Derived::PlainObject rounded(const Eigen::MatrixBase<Derived>& m)
-{
-    typename Derived::PlainObject result;
-    for (Eigen::Index k = 0; k < m.size(); ++k) {
-        result(k) = round_to<Scalar>(m(k));
-    }
-    return result;
-}
-
 template <typename Scalar> Symmetric3<Scalar> to_symmetric(const Matrix3d& m) { return Symmetric3<Scalar>(m.cast<Scalar>()); }
 template <typename Scalar> Matrix3d dense(const Symmetric3<Scalar>& s) { return s.matrix().template cast<double>(); }
-
-/// max |a - b| / max |b| (b the reference).
-template <typename A, typename B> double relative_error(const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>& b)
-{
-    const double scale = b.cwiseAbs().maxCoeff();
-    return (a - b).cwiseAbs().maxCoeff() / (scale > 0.0 ? scale : 1.0);
-}
 
 template <typename Scalar> class Symmetric3Typed : public ::testing::Test {};
 using Scalars = ::testing::Types<double, float>;
