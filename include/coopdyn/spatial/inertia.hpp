@@ -212,9 +212,9 @@ public:
         EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(Derived, 3);
         const Scalar m = other.mass();
         mass_ += m;
-        for (int k = 0; k < 3; ++k) {
-            first_moment_(k) += m * r(k);
-        }
+        first_moment_(0) += m * r(0);
+        first_moment_(1) += m * r(1);
+        first_moment_(2) += m * r(2);
         rotational_ += other.rotational();
         rotational_.add_skew_square(m, r);
     }
