@@ -25,6 +25,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <functional>
 #include <limits>
@@ -319,6 +320,71 @@ TEST(LoadDistribution, EqualsMinusGeneralizedInverseTimesWrenchAndReproducesTheO
     std::printf("[ distribution ] N = 2..6: max |h_i^d + (G+_M h_o^d)_i| / |h_o^d| = %.2e, "
                 "max |G hbar^d - h_o^d| / |h_o^d| = %.2e\n",
                 worst_blocks, worst_sum);
+}
+
+TEST(LoadDistribution, WeightListOverloadsMatchTheLeastNormInverseAndTheStackedForm)
+{
+    // The overloads in the conventional order (weights, r, ...) take the weights as a list of
+    // CentralInertia diag(m*_i I3, J*_i): checked against W G^T (G W G^T)^-1 from the literal G,
+    // G hbar^d = h_o^d, and the stacked-weight overloads, N = 1..6, std::vector and std::array.
+    Rng rng(2526);
+    double worst_inverse = 0.0;
+    double worst_sum = 0.0;
+    for (Index arms = 1; arms <= 6; ++arms) {
+        for (int trial = 0; trial < 10; ++trial) {
+            const MatrixXd r = off_centre_offsets(arms, rng);
+            const Weights weights = random_weights(arms, rng);
+            std::vector<coopdyn::CentralInertia<double>> list;
+            for (Index i = 0; i < arms; ++i) {
+                list.emplace_back(weights.mass(i), Matrix3d(weights.inertia.block(0, 3 * i, 3, 3)));
+            }
+            const MatrixXd g = literal_grasp_matrix(r);
+            const MatrixXd inverse = coopdyn::weighted_grasp_inverse(list, r);
+            const double inverse_error = relative_error(inverse, least_norm_right_inverse(g, weights));
+            worst_inverse = std::max(worst_inverse, inverse_error);
+            EXPECT_LT(inverse_error, 1e-12) << "N = " << arms;
+            EXPECT_LT(max_abs(inverse - coopdyn::weighted_grasp_inverse(r, weights.mass, weights.inertia)), 1e-13);
+
+            const Vector6d object_wrench = 20.0 * random_vector(6, rng);
+            const VectorXd desired = coopdyn::load_distribution(list, r, object_wrench);
+            const double sum_error = relative_error(g * (-desired), object_wrench);
+            worst_sum = std::max(worst_sum, sum_error);
+            EXPECT_LT(sum_error, 1e-13);
+            VectorXd written = VectorXd::Zero(6 * arms);
+            EXPECT_TRUE(coopdyn::try_distribute_load(list, r, object_wrench, written));
+            EXPECT_EQ(written, desired);
+            EXPECT_LT(max_abs(desired - coopdyn::load_distribution(r, weights.mass, weights.inertia, object_wrench)),
+                      1e-12);
+        }
+    }
+    // Fixed size: std::array weights, fixed r and output.
+    const Eigen::Matrix<double, 3, 2> r2 = off_centre_offsets(2, rng);
+    const std::array<coopdyn::CentralInertia<double>, 2> pair{
+        coopdyn::CentralInertia<double>(2.0, Matrix3d(Vector3d(0.1, 0.2, 0.3).asDiagonal())),
+        coopdyn::CentralInertia<double>(3.0, Matrix3d(Vector3d(0.3, 0.1, 0.2).asDiagonal()))};
+    const Eigen::Matrix<double, 12, 6> fixed_inverse = coopdyn::weighted_grasp_inverse(pair, r2);
+    EXPECT_LT(max_abs(literal_grasp_matrix(r2) * fixed_inverse - MatrixXd::Identity(6, 6)), 1e-13);
+    std::printf("[ weights as CentralInertia ] N = 1..6: max rel. diff. to W G^T (G W G^T)^-1 = %.2e, "
+                "max |G hbar^d - h_o^d| / |h_o^d| = %.2e\n",
+                worst_inverse, worst_sum);
+}
+
+TEST(LoadDistribution, WeightListOverloadsRefuseBadWeightsNamingTheArm)
+{
+    Rng rng(11);
+    const MatrixXd r = off_centre_offsets(3, rng);
+    std::vector<coopdyn::CentralInertia<double>> list(3, coopdyn::CentralInertia<double>(1.0, Matrix3d::Identity()));
+    list[2] = coopdyn::CentralInertia<double>(-1.0, Matrix3d::Identity());
+    try {
+        (void)coopdyn::weighted_grasp_inverse(list, r);
+        ADD_FAILURE() << "a negative mass weight was accepted";
+    } catch (const coopdyn::InvalidModel& error) {
+        EXPECT_EQ(error.parameter(), "mass_weights");
+        EXPECT_TRUE(error.has_arm());
+        EXPECT_EQ(error.arm(), 2);
+    }
+    list.pop_back();  // two weights for three arms
+    EXPECT_THROW((void)coopdyn::load_distribution(list, r, Vector6d::Zero()), coopdyn::InvalidModel);
 }
 
 // ---------------------------------------------------------------------------------------------
