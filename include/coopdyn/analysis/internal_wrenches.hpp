@@ -47,8 +47,9 @@ void solve_internal_wrenches(const EndEffectorInertias& end_effectors, const Eig
 {
     using Scalar = typename DerivedMotion::Scalar;
     COOPDYN_ASSERT(h_motion.size() == 6 * r.cols(), "h_motion must have 6N entries");
-    Motion<Scalar> virtual_acceleration;  // a_v of (53)
-    Force<Scalar> no_object_wrench;
+    // Written by the solve; zeroed only because g++ cannot see that (-Wmaybe-uninitialized).
+    Vector6<Scalar> virtual_acceleration = Vector6<Scalar>::Zero();  // a_v of (53)
+    Vector6<Scalar> no_object_wrench = Vector6<Scalar>::Zero();
     solve_interaction(element_inertia_t<EndEffectorInertias>::Zero(), end_effectors, r, omega_o,
                       Force<Scalar>::Zero(), h_motion, rigid_accelerations_out, internal_out, virtual_acceleration,
                       no_object_wrench);

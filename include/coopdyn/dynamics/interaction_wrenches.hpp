@@ -103,20 +103,21 @@ template <typename Composite, typename Inertia> Composite composite_from(const I
 }
 
 /// The structured solve (docs/dynamics.md), for any inertia structure. Writes the arms'
-/// accelerations and wrenches (6N each) and the object's acceleration and wrench. The object's
-/// acceleration is a local copied out at the end, not the return value: returned, it lives in the
-/// caller's memory, and g++ 12 reloads it in the second loop with packet loads that straddle its
-/// scalar stores (a store-forwarding stall per arm).
+/// accelerations and wrenches (6N each) and the object's acceleration and wrench (6 each, as
+/// stacked 6-vectors). The object's acceleration is a local written out at the end: returned as a
+/// Motion, it lived in the caller's memory, and g++ 12 reloaded its scalar stores with packet loads
+/// that straddle them (a store-forwarding stall per arm, and one more in the caller).
 template <typename ObjectInertia, typename EndEffectorInertias, typename DerivedR, typename DerivedOmega,
-          typename DerivedSigma, typename DerivedAcceleration, typename DerivedWrench>
+          typename DerivedSigma, typename DerivedAcceleration, typename DerivedWrench, typename DerivedObjectAcceleration,
+          typename DerivedObjectWrench>
 void solve_interaction(const ObjectInertia& object, const EndEffectorInertias& end_effectors,
                   const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedOmega>& omega_o,
                   const Force<typename DerivedSigma::Scalar>& object_h_sigma,
                   const Eigen::MatrixBase<DerivedSigma>& arm_h_sigma,
                   const Eigen::MatrixBase<DerivedAcceleration>& arm_accelerations_out,
                   const Eigen::MatrixBase<DerivedWrench>& arm_wrenches_out,
-                  Motion<typename DerivedSigma::Scalar>& object_acceleration_out,
-                  Force<typename DerivedSigma::Scalar>& object_wrench_out) noexcept
+                  const Eigen::MatrixBase<DerivedObjectAcceleration>& object_acceleration_out,
+                  const Eigen::MatrixBase<DerivedObjectWrench>& object_wrench_out) noexcept
 {
     using Scalar = typename DerivedSigma::Scalar;
     using Composite = composite_inertia_t<ObjectInertia, element_inertia_t<EndEffectorInertias>>;
@@ -134,6 +135,7 @@ void solve_interaction(const ObjectInertia& object, const EndEffectorInertias& e
     const Vector3<Scalar> omega(omega_o(0), omega_o(1), omega_o(2));
     Composite composite = composite_from<Composite>(object);
     Force<Scalar> rhs = object_h_sigma;
+    COOPDYN_UNROLL_BY_2
     for (Index i = 0; i < arms; ++i) {
         const Vector3<Scalar> r_i(r(0, i), r(1, i), r(2, i));
         const auto& inertia = end_effectors[static_cast<std::size_t>(i)];
@@ -145,6 +147,7 @@ void solve_interaction(const ObjectInertia& object, const EndEffectorInertias& e
     }
 
     const Motion<Scalar> object_acceleration = composite.solve(rhs);
+    COOPDYN_UNROLL_BY_2
     for (Index i = 0; i < arms; ++i) {
         const Vector3<Scalar> r_i(r(0, i), r(1, i), r(2, i));
         // xdd_i = G_i^T xdd_o + b_i, h_i = M_i xdd_i - hSigma_i
@@ -154,8 +157,8 @@ void solve_interaction(const ObjectInertia& object, const EndEffectorInertias& e
         (end_effectors[static_cast<std::size_t>(i)] * acceleration - Force<Scalar>::from(arm_h_sigma.template segment<6>(6 * i)))
             .write_to(arm_wrenches.template segment<6>(6 * i));
     }
-    object_acceleration_out = object_acceleration;
-    object_wrench_out = object * object_acceleration - object_h_sigma;
+    object_acceleration.write_to(object_acceleration_out);
+    (object * object_acceleration - object_h_sigma).write_to(object_wrench_out);
 }
 
 /// The end-effector part (last 6N entries) of a 6(N+1) stack, fixed-size when N is.
@@ -206,14 +209,10 @@ void interaction_wrenches(const ObjectInertia& object_inertia, const EndEffector
     // Eigen's documented idiom for writable expression arguments (blocks, maps, matrices).
     auto& accelerations = const_cast<Eigen::MatrixBase<DerivedAcceleration>&>(accelerations_out);
     auto& wrenches = const_cast<Eigen::MatrixBase<DerivedWrench>&>(wrenches_out);
-    Motion<Scalar> object_acceleration;
-    Force<Scalar> object_wrench;
     detail::solve_interaction(detail::as_inertia(object_inertia), detail::as_inertia_sequence(ee_inertias), r, omega_o,
                               Force<Scalar>::from(h_sigma.template head<6>()), detail::arm_part<arms>(h_sigma),
                               detail::arm_part<arms>(accelerations), detail::arm_part<arms>(wrenches),
-                              object_acceleration, object_wrench);
-    object_acceleration.write_to(accelerations.template head<6>());
-    object_wrench.write_to(wrenches.template head<6>());
+                              accelerations.template head<6>(), wrenches.template head<6>());
 }
 
 /// \brief Interaction wrenches h = [h_o; h_1; ...; h_N] (6(N+1)) of the rigid grasp: the
