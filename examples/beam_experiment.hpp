@@ -428,8 +428,14 @@ ExperimentResult run_experiment(const Scenario& scenario, const ModelType& model
             simulator.setpoints().set_pose(i, setpoints_at_equilibrium.pose(i));
         }
         Data<ModelType> tick(model);
+        // The load distribution is a digital controller: it runs once per 1 ms tick, on the state
+        // the step starts from, and its output is held through the step (a zero-order hold). The
+        // excitation is a continuous input, sampled at every integrator stage. The first call of
+        // a step is the tick (steps() counts the steps taken, so it changes once per step).
+        Index distributed_at_step = -1;
         const auto inputs = [&](double time, SetpointsType& setpoints, DisturbancesType& disturbances) {
-            if (time == simulator.time()) {  // a controller tick: the state is the step's start state
+            if (simulator.steps() != distributed_at_step) {
+                distributed_at_step = simulator.steps();
                 grasp_kinematics(model, tick, simulator.state());
                 distribution.distribute(tick, gravity_wrench, setpoints);
             }

@@ -11,6 +11,8 @@
 
 #include <array>
 #include <cassert>
+#include <cstdio>
+#include <cstdlib>
 #include <type_traits>
 #include <vector>
 
@@ -120,6 +122,27 @@ constexpr bool sizes_agree(int a, int b) noexcept
 #else
 #define COOPDYN_UNROLL_BY_2
 #endif
+
+namespace coopdyn::detail {
+/// Stops the program with `message` on stderr: the per-tick functions' answer to a caller error
+/// that would otherwise corrupt memory (a Data or input sized for another model). Cold and out of
+/// line so that the check costs one comparison on the hot path.
+[[noreturn]] inline void stop_on_misuse(const char* function, const char* message) noexcept
+{
+    std::fprintf(stderr, "coopdyn: %s: %s\n", function, message);
+    std::abort();
+}
+}  // namespace coopdyn::detail
+
+/// Always-on check of a caller error that would be undefined behaviour (a buffer sized for another
+/// model), in Release too: fails fast with a message instead of corrupting memory. Used only
+/// for shape checks, which cost one integer comparison per tick (none for a fixed N).
+#define COOPDYN_REQUIRE_SHAPE(condition, message)                            \
+    do {                                                                     \
+        if (!(condition)) {                                                  \
+            ::coopdyn::detail::stop_on_misuse(__func__, message);            \
+        }                                                                    \
+    } while (false)
 
 /// Debug-only check inside noexcept per-tick code. Define COOPDYN_DISABLE_ASSERTS to remove them
 /// from debug builds too; NDEBUG removes them as usual.

@@ -27,6 +27,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace {
@@ -747,3 +748,220 @@ TEST(SimulatorObserver, InputsAreSampledAtTheStageTimes)
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// 8. Feedback inputs, zero-order hold, time from a step count, non-finite states.
+// ---------------------------------------------------------------------------------------------
+namespace {
+
+/// The Section V beam (zero gravity) moving along x, with arm damping d_i = translational_damping.
+Model2 translating_beam_model(double translational_damping)
+{
+    BeamParameters beam = section_five_beam(1e-4);
+    for (ArmParameters& arm : beam.arms) {
+        arm.damping = translational_damping;
+    }
+    return make_model<Model2>(beam.object, beam.arms, Vec3::Zero());
+}
+
+/// Setpoints at the grasp poses of the beam at rest at the origin.
+coopdyn::Setpoints<double, 2> beam_setpoints(const Model2& model, const State& rest)
+{
+    coopdyn::Setpoints<double, 2> setpoints;
+    coopdyn::Data<Model2> data(model);
+    coopdyn::grasp_kinematics(model, data, rest);
+    for (Index i = 0; i < 2; ++i) {
+        setpoints.set_pose(i, data.end_effector_pose(i));
+    }
+    return setpoints;
+}
+
+}  // namespace
+
+TEST(SimulatorFeedback, StageStateFeedbackEqualsTheSameTermBuiltIntoTheModel)
+{
+    // A drag -c v_o on the object, fed back from the stage state, is the same ODE as c / 2 more
+    // translational damping on each of the two arms while the beam only translates (v_i = v_o):
+    // RK4 must give the same trajectory up to rounding. Fed back from the step's start state
+    // (all that the old callback could see) it is a first-order error in dt.
+    const double c = 400.0;
+    const double base_damping = 180.0;
+    const Model2 built_in = translating_beam_model(base_damping + c / 2);
+    const Model2 plain = translating_beam_model(base_damping);
+    const State rest = make_state(Vec3::Zero(), Quat::Identity(), Vec6::Zero());
+    Vec6 initial_twist = Vec6::Zero();
+    initial_twist(0) = 0.3;
+    const State initial = make_state(Vec3::Zero(), Quat::Identity(), initial_twist);
+
+    Sim2 reference(built_in, 1e-3, initial);
+    reference.setpoints() = beam_setpoints(built_in, rest);
+    Sim2 feedback(plain, 1e-3, initial);
+    feedback.setpoints() = beam_setpoints(plain, rest);
+    Sim2 step_start(plain, 1e-3, initial);
+    step_start.setpoints() = beam_setpoints(plain, rest);
+    for (Index k = 0; k < 200; ++k) {
+        reference.step();
+        feedback.step([&](double, const State& state, coopdyn::Setpoints<double, 2>&, coopdyn::Disturbances<double, 2>& d) {
+            d.object.head<3>() = -c * state.twist.head<3>();
+        });
+        step_start.step([&](double, coopdyn::Setpoints<double, 2>&, coopdyn::Disturbances<double, 2>& d) {
+            d.object.head<3>() = -c * step_start.state().twist.head<3>();
+        });
+    }
+    const double feedback_error = state_distance(feedback.state(), reference.state());
+    const double step_start_error = state_distance(step_start.state(), reference.state());
+    std::printf("[ feedback ] stage state: %.2e, step start state: %.2e\n", feedback_error, step_start_error);
+    EXPECT_GT(reference.state().pose.position(0), 1e-3);  // the beam did move
+    EXPECT_LT(feedback_error, 1e-13);
+    EXPECT_GT(step_start_error, 1e-6);
+}
+
+TEST(SimulatorFeedback, SmoothStateFeedbackKeepsFourthOrder)
+{
+    // A nonlinear feedback wrench on the tumbling three-arm system: the error against a fine
+    // reference falls 16x per halving of dt.
+    const ConservativeSystem system = ConservativeSystem::build(11);
+    const auto feedback = [](double time, const State& state, Setpoints3&, Disturbances3& d) {
+        d.object.head<3>() = -3.0 * state.twist.head<3>() * (1.0 + state.twist.head<3>().squaredNorm());
+        d.object.tail<3>() = -0.5 * state.twist.tail<3>() + Vec3(std::sin(5.0 * time), 0.0, 0.2);
+    };
+    const double duration = 0.4;
+    const auto simulate = [&](double dt) {
+        Sim3 sim(system.model, dt, system.initial);
+        sim.setpoints() = system.setpoints;
+        const Index steps = static_cast<Index>(std::lround(duration / dt));
+        for (Index k = 0; k < steps; ++k) {
+            sim.step(feedback);
+        }
+        return sim.state();
+    };
+    const State reference = simulate(duration / 3200);
+    double previous = 0.0;
+    for (const double dt : {duration / 25, duration / 50, duration / 100}) {
+        const double error = state_distance(simulate(dt), reference);
+        if (previous > 0.0) {
+            std::printf("[ feedback ] dt %.4f: error %.3e, ratio %.1f\n", dt, error, previous / error);
+            EXPECT_GT(previous / error, 12.0);
+            EXPECT_LT(previous / error, 20.0);
+        }
+        previous = error;
+    }
+}
+
+TEST(SimulatorFeedback, ZeroOrderHoldSamplesOncePerStepAtItsStart)
+{
+    const ConservativeSystem system = ConservativeSystem::build(5);
+    const double dt = 1e-3;
+    for (const Integrator integrator : {Integrator::runge_kutta_4, Integrator::semi_implicit_euler}) {
+        Sim3 sim(system.model, dt, system.initial, integrator, coopdyn::InputHold::zero_order);
+        std::vector<double> times;
+        std::vector<State> states;
+        for (Index k = 0; k < 5; ++k) {
+            states.push_back(sim.state());
+            sim.step([&](double time, const State& state, Setpoints3&, Disturbances3& d) {
+                times.push_back(time);
+                EXPECT_EQ(state.pose.position, states.back().pose.position);
+                d.object(0) = time;
+            });
+        }
+        ASSERT_EQ(times.size(), 5u);
+        for (std::size_t k = 0; k < times.size(); ++k) {
+            EXPECT_EQ(times[k], static_cast<double>(k) * dt);
+        }
+    }
+}
+
+TEST(SimulatorTime, IsTheStepCountTimesTheStepInFloat)
+{
+    // t += dt in float read 99.957 after 100 s; the step count gives 100 to float rounding.
+    using ModelF = coopdyn::Model<float, 2>;
+    const BeamParameters beam = section_five_beam(1e-4);
+    const Model2 model_double = make_model<Model2>(beam.object, beam.arms, Vec3::Zero());
+    std::vector<coopdyn::Arm<coopdyn::ImpedanceEndEffector<float>>> arms(2);
+    for (Index i = 0; i < 2; ++i) {
+        const auto& e = model_double.end_effector(i);
+        auto& arm = arms[static_cast<std::size_t>(i)];
+        arm.end_effector.mass = float(e.mass);
+        arm.end_effector.rotational_inertia = e.rotational_inertia.cast<float>();
+        arm.end_effector.translational_damping = float(e.translational_damping);
+        arm.end_effector.rotational_damping = float(e.rotational_damping);
+        arm.end_effector.translational_stiffness = float(e.translational_stiffness);
+        arm.end_effector.rotational_stiffness = float(e.rotational_stiffness);
+        arm.grasp_body.position = model_double.grasp_offsets_body().col(i).cast<float>();
+    }
+    coopdyn::RigidObject<float> object{1.75f, beam.object.inertia_body.cast<float>()};
+    const ModelF model(object, arms, Eigen::Vector3f::Zero());
+    coopdyn::RigidBodyState<float> rest;
+    coopdyn::Simulator<ModelF> sim(model, 1e-3f, rest, Integrator::semi_implicit_euler);
+    coopdyn::Data<ModelF> data(model);
+    coopdyn::grasp_kinematics(model, data, rest);
+    for (Index i = 0; i < 2; ++i) {
+        sim.setpoints().set_pose(i, data.end_effector_pose(i));
+    }
+    for (Index k = 0; k < 100000; ++k) {
+        sim.step();
+    }
+    EXPECT_EQ(sim.steps(), 100000);
+    EXPECT_NEAR(sim.time(), 100.0f, 1e-5f);
+    sim.reset(rest, 5.0f);
+    EXPECT_EQ(sim.steps(), 0);
+    EXPECT_EQ(sim.time(), 5.0f);
+}
+
+TEST(SimulatorStatus, ADivergingSimulationStopsAtTheLastFiniteStateAndSaysWhen)
+{
+    // k = 1e8 N/m at dt = 1 ms is far outside RK4's stability region (omega dt ~ 3): the state
+    // grows without bound and would overflow to Inf and NaN.
+    BeamParameters beam = section_five_beam(1e-4);
+    for (ArmParameters& arm : beam.arms) {
+        arm.stiffness = 1e8;
+    }
+    const Model2 model = make_model<Model2>(beam.object, beam.arms, Vec3::Zero());
+    const State rest = make_state(Vec3::Zero(), Quat::Identity(), Vec6::Zero());
+    const State displaced = make_state(Vec3(1e-3, 0.0, 0.0), Quat::Identity(), Vec6::Zero());
+    Sim2 sim(model, 1e-3, displaced);
+    sim.setpoints() = beam_setpoints(model, rest);
+    Index observed = 0;
+    const auto& status = sim.run(
+        2000, [](double, coopdyn::Setpoints<double, 2>&, coopdyn::Disturbances<double, 2>&) {},
+        [&](double, const State& state, const coopdyn::Data<Model2>&) {
+            EXPECT_TRUE(state.twist.allFinite());
+            ++observed;
+        });
+    std::printf("[ status ] diverged at step %lld, t = %.3f s\n", static_cast<long long>(status.failed_step),
+                status.failed_time);
+    ASSERT_FALSE(status.ok);
+    EXPECT_GT(status.failed_step, 10);
+    EXPECT_LT(status.failed_step, 2000);
+    EXPECT_EQ(sim.steps(), status.failed_step);
+    EXPECT_EQ(observed, status.failed_step);
+    EXPECT_DOUBLE_EQ(status.failed_time, static_cast<double>(status.failed_step) * 1e-3);
+    EXPECT_TRUE(sim.state().pose.position.allFinite() && sim.state().twist.allFinite());
+    const State stuck = sim.state();
+    EXPECT_FALSE(sim.step().ok);  // later steps do nothing
+    EXPECT_EQ(sim.state().pose.position, stuck.pose.position);
+    sim.reset(displaced);
+    EXPECT_TRUE(sim.status().ok);
+}
+
+TEST(SimulatorStatus, NanInputFailsTheFirstStepAndKeepsTheState)
+{
+    const ConservativeSystem system = ConservativeSystem::build(3);
+    Sim3 sim(system.model, 1e-3, system.initial);
+    sim.setpoints() = system.setpoints;
+    const auto& status = sim.step([](double, Setpoints3&, Disturbances3& d) { d.object(2) = std::nan(""); });
+    EXPECT_FALSE(status.ok);
+    EXPECT_EQ(status.failed_step, 0);
+    EXPECT_EQ(status.failed_time, 0.0);
+    EXPECT_EQ(sim.state().pose.position, system.initial.pose.position);
+    EXPECT_EQ(sim.state().twist, system.initial.twist);
+}
+
+TEST(SimulatorLifetime, ATemporaryModelDoesNotCompile)
+{
+    // The simulator keeps a reference to its model: the rvalue overload is deleted.
+    static_assert(std::is_constructible_v<Sim2, const Model2&, double, const State&>);
+    static_assert(!std::is_constructible_v<Sim2, Model2&&, double, const State&>);
+    static_assert(!std::is_constructible_v<Sim2, Model2, double, const State&>);
+    SUCCEED();
+}

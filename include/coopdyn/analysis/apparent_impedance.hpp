@@ -90,6 +90,7 @@ template <typename ModelType>
 ImpedanceSums<SpatialInertia<typename ModelType::Scalar>> apparent_impedance_sums(const ModelType& model,
                                                                                   const Data<ModelType>& data) noexcept
 {
+    COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms(), "Data was built for another model");
     static_assert(is_impedance_end_effector_v<typename ModelType::EndEffectorModel>,
                   "the apparent impedance needs impedance end-effectors (damping() and stiffness())");
     ImpedanceSums<SpatialInertia<typename ModelType::Scalar>> sums;
@@ -154,6 +155,8 @@ Vector6<typename ModelType::Scalar> restoring_wrench(
     const ModelType& model, const Data<ModelType>& data,
     const Setpoints<typename ModelType::Scalar, ModelType::arms_at_compile_time>& setpoints) noexcept
 {
+    COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms(), "Data was built for another model");
+    COOPDYN_REQUIRE_SHAPE(setpoints.arms() == model.arms(), "setpoints sized for another number of arms");
     using Scalar = typename ModelType::Scalar;
     Vector6<Scalar> result = Vector6<Scalar>::Zero();
     for (Index i = 0; i < model.arms(); ++i) {
@@ -168,6 +171,7 @@ Vector6<typename ModelType::Scalar> restoring_wrench(
 template <typename ModelType>
 Vector6<typename ModelType::Scalar> apparent_coriolis_wrench(const ModelType& model, const Data<ModelType>& data) noexcept
 {
+    COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms(), "Data was built for another model");
     using Scalar = typename ModelType::Scalar;
     const auto& twist = data.object_state.twist;
     const Vector3<Scalar> omega = twist.template tail<3>();
@@ -196,6 +200,8 @@ Vector6<typename ModelType::Scalar> reduced_model_acceleration(
     const Setpoints<typename ModelType::Scalar, ModelType::arms_at_compile_time>& setpoints,
     const Vector6<typename ModelType::Scalar>& object_disturbance) noexcept
 {
+    COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms(), "Data was built for another model");
+    COOPDYN_REQUIRE_SHAPE(setpoints.arms() == model.arms(), "setpoints sized for another number of arms");
     using Scalar = typename ModelType::Scalar;
     grasp_kinematics(model, data, object_state);
     const ApparentImpedance<Scalar> impedance = apparent_impedance(model, data);
@@ -213,6 +219,8 @@ typename ModelType::Scalar storage_function(
     const ModelType& model, const Data<ModelType>& data,
     const Setpoints<typename ModelType::Scalar, ModelType::arms_at_compile_time>& setpoints) noexcept
 {
+    COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms(), "Data was built for another model");
+    COOPDYN_REQUIRE_SHAPE(setpoints.arms() == model.arms(), "setpoints sized for another number of arms");
     using Scalar = typename ModelType::Scalar;
     return detail::apparent_impedance_sums(model, data).inertia.kinetic_energy(Motion<Scalar>::from(data.object_state.twist)) +
            spring_potential_energy(model, data, setpoints);

@@ -211,7 +211,7 @@ SynthesisResult<double> synthesize_at(const ModelType& model, const Data<ModelTy
                                       const Eigen::MatrixBase<DerivedTarget>& target, double tolerance)
 {
     require_impedance_model<ModelType>();
-    COOPDYN_ASSERT(data.arms() == model.arms(), "Data was built for another model");
+    COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms(), "Data was built for another model");
     (void)model;
     return synthesize_gains(data.grasp_offsets, target, tolerance);
 }

@@ -146,7 +146,7 @@ template <typename ModelType>
 const WrenchDecomposition<ModelType>& decompose_wrenches(const ModelType& model, const Data<ModelType>& data,
                                                          WrenchDecomposition<ModelType>& decomposition) noexcept
 {
-    COOPDYN_ASSERT(decomposition.arms() == model.arms(), "decomposition sized for another number of arms");
+    COOPDYN_REQUIRE_SHAPE(decomposition.arms() == model.arms(), "decomposition sized for another number of arms");
     internal_wrenches(model.end_effector_inertia_list(), data.grasp_offsets, data.object_state.twist.template tail<3>(),
                       data.motion_wrenches, decomposition.rigid_accelerations, decomposition.internal);
     decomposition.external = data.end_effector_wrenches() - decomposition.internal;

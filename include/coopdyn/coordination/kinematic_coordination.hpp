@@ -23,7 +23,7 @@ void coordinate_setpoints(const ModelType& model, const RigidBodyState<typename 
                           Setpoints<typename ModelType::Scalar, ModelType::arms_at_compile_time>& setpoints) noexcept
 {
     using Scalar = typename ModelType::Scalar;
-    COOPDYN_ASSERT(setpoints.arms() == model.arms(), "setpoints sized for another number of arms");
+    COOPDYN_REQUIRE_SHAPE(setpoints.arms() == model.arms(), "setpoints sized for another number of arms");
     const Matrix3<Scalar> rotation = desired_object.pose.orientation.toRotationMatrix();
     const Vector3<Scalar> omega = desired_object.twist.template tail<3>();
     for (Index i = 0; i < model.arms(); ++i) {

@@ -456,6 +456,8 @@ public:
     void distribute(const Data<ModelType>& data, const Eigen::MatrixBase<DerivedWrench>& object_wrench,
                     Setpoints<Scalar, Arms>& setpoints) const noexcept
     {
+        COOPDYN_REQUIRE_SHAPE(data.arms() == mass_weights_.size(), "Data was built for another number of arms");
+        COOPDYN_REQUIRE_SHAPE(setpoints.arms() == mass_weights_.size(), "setpoints sized for another number of arms");
         const bool distributed =
             try_distribute_load(data.grasp_offsets, mass_weights_, inertia_weights_, object_wrench, setpoints.wrenches);
         COOPDYN_ASSERT(distributed, "weights validated at construction cannot be degenerate");

@@ -20,7 +20,7 @@ void grasp_kinematics(const ModelType& model, Data<ModelType>& data,
                       const RigidBodyState<typename ModelType::Scalar>& object_state) noexcept
 {
     using Scalar = typename ModelType::Scalar;
-    COOPDYN_ASSERT(data.arms() == model.arms(), "Data was built for another model");
+    COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms(), "Data was built for another model");
     data.object_state = object_state;
     data.object_rotation = object_state.pose.orientation.toRotationMatrix();
     data.object_rotational_inertia = model.object().rotational_inertia(data.object_rotation);
@@ -48,8 +48,8 @@ interaction_dynamics(const ModelType& model, Data<ModelType>& data,
                      const Disturbances<typename ModelType::Scalar, ModelType::arms_at_compile_time>& disturbances) noexcept
 {
     using Scalar = typename ModelType::Scalar;
-    COOPDYN_ASSERT(setpoints.arms() == model.arms(), "setpoints sized for another number of arms");
-    COOPDYN_ASSERT(disturbances.arms() == model.arms(), "disturbances sized for another number of arms");
+    COOPDYN_REQUIRE_SHAPE(setpoints.arms() == model.arms(), "setpoints sized for another number of arms");
+    COOPDYN_REQUIRE_SHAPE(disturbances.arms() == model.arms(), "disturbances sized for another number of arms");
     grasp_kinematics(model, data, object_state);
 
     for (Index i = 0; i < model.arms(); ++i) {

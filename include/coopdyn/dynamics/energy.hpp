@@ -21,6 +21,7 @@ CentralInertia<typename ModelType::Scalar> object_inertia(const ModelType& model
 template <typename ModelType>
 typename ModelType::Scalar kinetic_energy(const ModelType& model, const Data<ModelType>& data) noexcept
 {
+    COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms(), "Data was built for another model");
     using Scalar = typename ModelType::Scalar;
     Scalar energy = object_inertia(model, data).kinetic_energy(Motion<Scalar>::from(data.object_state.twist));
     for (Index i = 0; i < model.arms(); ++i) {
@@ -37,6 +38,8 @@ typename ModelType::Scalar spring_potential_energy(
     const ModelType& model, const Data<ModelType>& data,
     const Setpoints<typename ModelType::Scalar, ModelType::arms_at_compile_time>& setpoints) noexcept
 {
+    COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms(), "Data was built for another model");
+    COOPDYN_REQUIRE_SHAPE(setpoints.arms() == model.arms(), "setpoints sized for another number of arms");
     static_assert(is_impedance_end_effector_v<typename ModelType::EndEffectorModel>,
                   "this end-effector model's stiffness has no potential");
     using Scalar = typename ModelType::Scalar;
@@ -59,6 +62,7 @@ typename ModelType::Scalar gravity_potential_energy(const ModelType& model, cons
 template <typename ModelType>
 Vector3<typename ModelType::Scalar> linear_momentum(const ModelType& model, const Data<ModelType>& data) noexcept
 {
+    COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms(), "Data was built for another model");
     using Scalar = typename ModelType::Scalar;
     Vector3<Scalar> momentum = (object_inertia(model, data) * Motion<Scalar>::from(data.object_state.twist)).linear;
     for (Index i = 0; i < model.arms(); ++i) {
@@ -72,6 +76,7 @@ Vector3<typename ModelType::Scalar> linear_momentum(const ModelType& model, cons
 template <typename ModelType>
 Vector3<typename ModelType::Scalar> angular_momentum(const ModelType& model, const Data<ModelType>& data) noexcept
 {
+    COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms(), "Data was built for another model");
     using Scalar = typename ModelType::Scalar;
     const Force<Scalar> object_momentum =
         object_inertia(model, data) * Motion<Scalar>::from(data.object_state.twist);

@@ -11,6 +11,7 @@
 #include "coopdyn/spatial/quaternion.hpp"
 
 #include <cmath>
+#include <type_traits>
 #include <utility>
 
 namespace coopdyn {
@@ -26,13 +27,39 @@ enum class Integrator {
     semi_implicit_euler,
 };
 
+/// When Simulator calls the input function within a step.
+enum class InputHold {
+    /// At every stage of the integrator (RK4: t, t + dt/2 twice, t + dt), with the stage's state:
+    /// inputs that are smooth functions of time and state (a physical drag, a spring, a
+    /// continuous-time controller) keep the integrator's order.
+    per_stage,
+    /// Once per step, at its start, held through the step: a digital controller that computes its
+    /// output once per tick (zero-order hold). The step then integrates a piecewise-constant input
+    /// exactly as a real sampled controller applies it.
+    zero_order,
+};
+
+/// \brief What became of the steps taken since the last reset. A step that produces a non-finite
+/// state (a diverging simulation, NaN inputs) is not taken: the state stays at the last finite
+/// one, `ok` turns false and stays false until reset(), and later steps do nothing.
+template <typename Scalar> struct SimulationStatus {
+    bool ok = true;
+    /// The step that failed, counted from 0 at the last reset (-1 while ok).
+    Index failed_step = -1;
+    /// The time the failed step started from.
+    Scalar failed_time = Scalar(0);
+};
+
 /// \brief Steps a cooperative Model at a fixed time step.
 ///
-/// Inputs come from a caller-supplied function `inputs(time, setpoints, disturbances)` that
-/// writes the setpoints and disturbances at `time` into the buffers it is given (they keep their
-/// previous values if it writes nothing). RK4 calls it at t, t + dt/2 (twice) and t + dt.
+/// Inputs come from a caller-supplied function that writes the setpoints and disturbances into
+/// the buffers it is given (they keep their previous values if it writes nothing), either
+/// `inputs(time, state, setpoints, disturbances)` (state = the integrator stage's object state,
+/// for feedback) or `inputs(time, setpoints, disturbances)`. With InputHold::per_stage (default)
+/// RK4 calls it at t, t + dt/2 (twice) and t + dt; with InputHold::zero_order once per step.
 /// After each step, data() holds the full evaluation (accelerations and every wrench) at the
 /// state and time the step started from, for a logger; run() hands exactly that to an observer.
+/// time() is start time + (steps since reset) dt, never an accumulated sum.
 /// Nothing allocates after construction.
 template <typename ModelType> class Simulator {
 public:
@@ -43,15 +70,19 @@ public:
     using DisturbancesType = Disturbances<Scalar, Arms>;
     using DataType = Data<ModelType>;
 
-    /// \param model kept by reference: it must outlive the simulator.
+    using Status = SimulationStatus<Scalar>;
+
+    /// \param model kept by reference: it must outlive the simulator (a temporary model does not
+    ///        compile: that overload is deleted).
     /// \param time_step dt > 0, seconds.
     /// \param initial_state object pose (unit quaternion) and twist.
     /// Throws InvalidArgument on a non-positive or non-finite time step or an invalid initial state.
     Simulator(const ModelType& model, Scalar time_step, const State& initial_state,
-              Integrator integrator = Integrator::runge_kutta_4)
+              Integrator integrator = Integrator::runge_kutta_4, InputHold input_hold = InputHold::per_stage)
         : model_(model),
           time_step_(time_step),
           integrator_(integrator),
+          input_hold_(input_hold),
           setpoints_(model.arms()),
           disturbances_(model.arms()),
           data_(model),
@@ -60,6 +91,9 @@ public:
         detail::require_positive(time_step, "simulator", "time_step");
         reset(initial_state);
     }
+    /// A simulator keeps a reference to its model: a temporary would dangle.
+    Simulator(const ModelType&& model, Scalar time_step, const State& initial_state,
+              Integrator integrator = Integrator::runge_kutta_4, InputHold input_hold = InputHold::per_stage) = delete;
 
     /// Restart from `state` at `time`. Throws InvalidArgument if the state is not finite or its
     /// quaternion is not unit.
@@ -69,48 +103,69 @@ public:
         detail::require_unit_quaternion(state.pose.orientation, "simulator", "state.pose.orientation");
         detail::require_finite(state.twist, "simulator", "state.twist");
         state_ = state;
-        time_ = time;
+        start_time_ = time;
+        steps_ = 0;
+        status_ = Status{};
     }
 
-    /// Advance one step of dt with inputs from `inputs(time, setpoints, disturbances)`.
-    template <typename InputFunction> void step(InputFunction&& inputs)
+    /// Advance one step of dt with inputs from `inputs` (see the class comment). Returns the
+    /// status: a step that would produce a non-finite state is not taken (SimulationStatus).
+    template <typename InputFunction> const Status& step(InputFunction&& inputs)
     {
-        if (integrator_ == Integrator::runge_kutta_4) {
-            step_runge_kutta_4(inputs);
-        } else {
-            step_semi_implicit_euler(inputs);
+        if (!status_.ok) {
+            return status_;
         }
+        const State start = state_;
+        const bool finite = integrator_ == Integrator::runge_kutta_4 ? step_runge_kutta_4(inputs)
+                                                                     : step_semi_implicit_euler(inputs);
+        if (finite) {
+            ++steps_;
+        } else {
+            state_ = start;
+            status_.ok = false;
+            status_.failed_step = steps_;
+            status_.failed_time = time();
+        }
+        return status_;
     }
 
     /// Advance one step keeping the current setpoints() and disturbances().
-    void step()
+    const Status& step()
     {
-        step([](Scalar, SetpointsType&, DisturbancesType&) noexcept {});
+        return step([](Scalar, SetpointsType&, DisturbancesType&) noexcept {});
     }
 
     /// Take `steps` steps; before each, call observer(time, state, data) with the state the step
-    /// starts from and the evaluation at that state (the per-step interaction wrenches).
+    /// starts from and the evaluation at that state (the per-step interaction wrenches). Stops at
+    /// a failed step (not observed) and returns the status.
     template <typename InputFunction, typename Observer>
-    void run(Index steps, InputFunction&& inputs, Observer&& observer)
+    const Status& run(Index steps, InputFunction&& inputs, Observer&& observer)
     {
-        for (Index k = 0; k < steps; ++k) {
-            const Scalar start_time = time_;
+        for (Index k = 0; k < steps && status_.ok; ++k) {
+            const Scalar start_time = time();
             const State start_state = state_;
-            step(inputs);
-            observer(start_time, start_state, static_cast<const DataType&>(data_));
+            if (step(inputs).ok) {
+                observer(start_time, start_state, static_cast<const DataType&>(data_));
+            }
         }
+        return status_;
     }
 
     /// Evaluate the dynamics at the current state and time without stepping; result in data().
     template <typename InputFunction> const DataType& evaluate(InputFunction&& inputs)
     {
-        inputs(time_, setpoints_, disturbances_);
+        call_inputs(inputs, time(), state_);
         interaction_dynamics(model_, data_, state_, setpoints_, disturbances_);
         return data_;
     }
 
     const State& state() const noexcept { return state_; }
-    Scalar time() const noexcept { return time_; }
+    /// Start time + (steps since reset) dt: no rounding accumulates over long runs.
+    Scalar time() const noexcept { return start_time_ + static_cast<Scalar>(static_cast<double>(steps_)) * time_step_; }
+    /// Steps taken since the last reset.
+    Index steps() const noexcept { return steps_; }
+    const Status& status() const noexcept { return status_; }
+    InputHold input_hold() const noexcept { return input_hold_; }
     Scalar time_step() const noexcept { return time_step_; }
     const ModelType& model() const noexcept { return model_; }
     /// Evaluation at the start of the last step (or the last evaluate()).
@@ -127,10 +182,33 @@ private:
         Vector6<Scalar> twist;
     };
 
-    template <typename InputFunction>
-    Derivative derivative(Scalar time, const State& state, DataType& data, InputFunction& inputs)
+    /// Calls either form of the input function.
+    template <typename InputFunction> void call_inputs(InputFunction& inputs, Scalar time, const State& state)
     {
-        inputs(time, setpoints_, disturbances_);
+        if constexpr (std::is_invocable_v<InputFunction&, Scalar, const State&, SetpointsType&, DisturbancesType&>) {
+            inputs(time, state, setpoints_, disturbances_);
+        } else {
+            static_assert(std::is_invocable_v<InputFunction&, Scalar, SetpointsType&, DisturbancesType&>,
+                          "inputs must be callable as (time, state, setpoints, disturbances) or "
+                          "(time, setpoints, disturbances)");
+            inputs(time, setpoints_, disturbances_);
+        }
+    }
+
+    static bool is_finite(const State& state) noexcept
+    {
+        return state.pose.position.allFinite() && state.pose.orientation.coeffs().allFinite() &&
+               state.twist.allFinite();
+    }
+
+    /// The derivative at a stage; `first_stage` marks the step's first evaluation (where a
+    /// zero-order hold samples its inputs).
+    template <typename InputFunction>
+    Derivative derivative(Scalar time, const State& state, DataType& data, InputFunction& inputs, bool first_stage)
+    {
+        if (first_stage || input_hold_ == InputHold::per_stage) {
+            call_inputs(inputs, time, state);
+        }
         interaction_dynamics(model_, data, state, setpoints_, disturbances_);
         Derivative result;
         result.position = state.twist.template head<3>();
@@ -152,40 +230,58 @@ private:
         return result;
     }
 
-    template <typename InputFunction> void step_runge_kutta_4(InputFunction& inputs)
+    /// One RK4 step; false (state_ partly updated) as soon as a stage state is not finite, so
+    /// the dynamics are never evaluated at a NaN state.
+    template <typename InputFunction> bool step_runge_kutta_4(InputFunction& inputs)
     {
+        const Scalar time = this->time();
         const Scalar dt = time_step_;
         const Scalar half = dt / Scalar(2);
-        const Derivative k1 = derivative(time_, state_, data_, inputs);
-        const Derivative k2 = derivative(time_ + half, advance(state_, k1, half), stage_data_, inputs);
-        const Derivative k3 = derivative(time_ + half, advance(state_, k2, half), stage_data_, inputs);
-        const Derivative k4 = derivative(time_ + dt, advance(state_, k3, dt), stage_data_, inputs);
+        const Derivative k1 = derivative(time, state_, data_, inputs, true);
+        const State stage2 = advance(state_, k1, half);
+        if (!is_finite(stage2)) {
+            return false;
+        }
+        const Derivative k2 = derivative(time + half, stage2, stage_data_, inputs, false);
+        const State stage3 = advance(state_, k2, half);
+        if (!is_finite(stage3)) {
+            return false;
+        }
+        const Derivative k3 = derivative(time + half, stage3, stage_data_, inputs, false);
+        const State stage4 = advance(state_, k3, dt);
+        if (!is_finite(stage4)) {
+            return false;
+        }
+        const Derivative k4 = derivative(time + dt, stage4, stage_data_, inputs, false);
         const Scalar sixth = dt / Scalar(6);
         state_.pose.position += sixth * (k1.position + Scalar(2) * (k2.position + k3.position) + k4.position);
         state_.pose.orientation.coeffs() +=
             sixth * (k1.orientation + Scalar(2) * (k2.orientation + k3.orientation) + k4.orientation);
         state_.pose.orientation.normalize();
         state_.twist += sixth * (k1.twist + Scalar(2) * (k2.twist + k3.twist) + k4.twist);
-        time_ += dt;
+        return is_finite(state_);
     }
 
-    template <typename InputFunction> void step_semi_implicit_euler(InputFunction& inputs)
+    template <typename InputFunction> bool step_semi_implicit_euler(InputFunction& inputs)
     {
         const Scalar dt = time_step_;
-        const Derivative slope = derivative(time_, state_, data_, inputs);
+        const Derivative slope = derivative(time(), state_, data_, inputs, true);
         state_.twist += dt * slope.twist;
         state_.pose.position += dt * state_.twist.template head<3>();
         const Vector3<Scalar> rotation = dt * state_.twist.template tail<3>();
         state_.pose.orientation = quaternion_exp(rotation) * state_.pose.orientation;
         state_.pose.orientation.normalize();
-        time_ += dt;
+        return is_finite(state_);
     }
 
     const ModelType& model_;
     Scalar time_step_;
     Integrator integrator_;
+    InputHold input_hold_;
     State state_{};
-    Scalar time_ = Scalar(0);
+    Scalar start_time_ = Scalar(0);
+    Index steps_ = 0;
+    Status status_{};
     SetpointsType setpoints_;
     DisturbancesType disturbances_;
     DataType data_;

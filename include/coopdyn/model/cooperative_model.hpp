@@ -172,6 +172,19 @@ GraspPoint<typename ModelType::Scalar> grasp_point(const ModelType& model, Index
     return point;
 }
 
+namespace detail {
+/// The arm count of an input buffer: `arms` >= 1, and equal to a fixed N. Throws InvalidArgument.
+template <int Arms> Index checked_arm_count(Index arms, const char* component)
+{
+    if (arms < 1 || (Arms != Dynamic && arms != Arms)) {
+        fail(argument_context(component), "arms",
+             "must be " + (Arms == Dynamic ? std::string("at least 1") : std::to_string(Arms) + " (the fixed N)") +
+                 ", got " + std::to_string(arms));
+    }
+    return arms;
+}
+}  // namespace detail
+
 /// \brief Per-tick inputs of the end-effector controllers: desired poses x_i^d, twists
 /// xdot_i^d, accelerations xdd_i^d and wrenches h_i^d (1). Sized once.
 template <typename Scalar, int Arms> struct Setpoints {
@@ -181,9 +194,13 @@ template <typename Scalar, int Arms> struct Setpoints {
     EndEffectorVector<Scalar, Arms> accelerations; ///< xdd_i^d stacked, 6N
     EndEffectorVector<Scalar, Arms> wrenches;      ///< h_i^d stacked, 6N (desired wrench ON arm i)
 
-    /// Zero motion and wrench, identity orientations, for `arms` arms (ignored when N is fixed).
-    explicit Setpoints(Index arms = (Arms == Dynamic ? 0 : Arms))
-        : positions(PerArmVector3<Scalar, Arms>::Zero(3, arms)),
+    /// Zero motion and wrench, identity orientations, for a fixed N. A dynamic-N Setpoints has no
+    /// default constructor: it would have no arms.
+    template <int A = Arms, std::enable_if_t<A != Dynamic, int> = 0> Setpoints() : Setpoints(Index(Arms)) {}
+    /// Zero motion and wrench, identity orientations, for `arms` arms. Throws InvalidArgument
+    /// ("setpoints", "arms") unless arms >= 1 and, for a fixed N, arms == N.
+    explicit Setpoints(Index arms)
+        : positions(PerArmVector3<Scalar, Arms>::Zero(3, detail::checked_arm_count<Arms>(arms, "setpoints"))),
           orientations(PerArmQuaternion<Scalar, Arms>::Zero(4, arms)),
           twists(EndEffectorVector<Scalar, Arms>::Zero(6 * arms)),
           accelerations(EndEffectorVector<Scalar, Arms>::Zero(6 * arms)),
@@ -195,19 +212,28 @@ template <typename Scalar, int Arms> struct Setpoints {
     Index arms() const noexcept { return positions.cols(); }
     Pose<Scalar> pose(Index arm) const noexcept
     {
+        COOPDYN_ASSERT(arm >= 0 && arm < arms(), "arm index out of range");
         return Pose<Scalar>{positions.col(arm), Quaternion<Scalar>(orientations.col(arm))};
     }
     void set_pose(Index arm, const Pose<Scalar>& pose) noexcept
     {
+        COOPDYN_ASSERT(arm >= 0 && arm < arms(), "arm index out of range");
         positions.col(arm) = pose.position;
         orientations.col(arm) = pose.orientation.coeffs();
     }
-    auto twist(Index arm) noexcept { return twists.template segment<6>(6 * arm); }
-    auto twist(Index arm) const noexcept { return twists.template segment<6>(6 * arm); }
-    auto acceleration(Index arm) noexcept { return accelerations.template segment<6>(6 * arm); }
-    auto acceleration(Index arm) const noexcept { return accelerations.template segment<6>(6 * arm); }
-    auto wrench(Index arm) noexcept { return wrenches.template segment<6>(6 * arm); }
-    auto wrench(Index arm) const noexcept { return wrenches.template segment<6>(6 * arm); }
+    auto twist(Index arm) noexcept { return twists.template segment<6>(6 * checked(arm)); }
+    auto twist(Index arm) const noexcept { return twists.template segment<6>(6 * checked(arm)); }
+    auto acceleration(Index arm) noexcept { return accelerations.template segment<6>(6 * checked(arm)); }
+    auto acceleration(Index arm) const noexcept { return accelerations.template segment<6>(6 * checked(arm)); }
+    auto wrench(Index arm) noexcept { return wrenches.template segment<6>(6 * checked(arm)); }
+    auto wrench(Index arm) const noexcept { return wrenches.template segment<6>(6 * checked(arm)); }
+
+private:
+    Index checked(Index arm) const noexcept
+    {
+        COOPDYN_ASSERT(arm >= 0 && arm < arms(), "arm index out of range");
+        return arm;
+    }
 };
 
 /// \brief Disturbance wrenches: htilde_o on the object (8) and htilde_i on each end-effector (1).
@@ -215,13 +241,24 @@ template <typename Scalar, int Arms> struct Disturbances {
     Vector6<Scalar> object = Vector6<Scalar>::Zero();
     EndEffectorVector<Scalar, Arms> end_effectors;
 
-    explicit Disturbances(Index arms = (Arms == Dynamic ? 0 : Arms))
-        : end_effectors(EndEffectorVector<Scalar, Arms>::Zero(6 * arms))
+    /// Zero disturbances for a fixed N (a dynamic-N Disturbances has no default constructor).
+    template <int A = Arms, std::enable_if_t<A != Dynamic, int> = 0> Disturbances() : Disturbances(Index(Arms)) {}
+    /// Zero disturbances for `arms` arms. Throws InvalidArgument ("disturbances", "arms") unless
+    /// arms >= 1 and, for a fixed N, arms == N.
+    explicit Disturbances(Index arms)
+        : end_effectors(EndEffectorVector<Scalar, Arms>::Zero(6 * detail::checked_arm_count<Arms>(arms, "disturbances")))
     {
     }
     Index arms() const noexcept { return end_effectors.size() / 6; }
-    auto end_effector(Index arm) noexcept { return end_effectors.template segment<6>(6 * arm); }
-    auto end_effector(Index arm) const noexcept { return end_effectors.template segment<6>(6 * arm); }
+    auto end_effector(Index arm) noexcept { return end_effectors.template segment<6>(6 * checked(arm)); }
+    auto end_effector(Index arm) const noexcept { return end_effectors.template segment<6>(6 * checked(arm)); }
+
+private:
+    Index checked(Index arm) const noexcept
+    {
+        COOPDYN_ASSERT(arm >= 0 && arm < arms(), "arm index out of range");
+        return arm;
+    }
 };
 
 /// \brief Buffers and results of the per-tick algorithms for one Model. Build once, reuse every
@@ -258,22 +295,39 @@ template <typename ModelType> struct Data {
     FullStackVector<Scalar, Arms> accelerations;      ///< [xdd_o; xdd_1; ...]
     FullStackVector<Scalar, Arms> wrenches;           ///< [h_o; h_1; ...], wrench ON each body
 
+    /// N of the model this Data was built for (the per-tick functions stop the program with a
+    /// message, also in Release, when it differs from their model's).
     Index arms() const noexcept { return grasp_offsets.cols(); }
     Pose<Scalar> end_effector_pose(Index arm) const noexcept
     {
-        return Pose<Scalar>{end_effector_positions.col(arm),
+        return Pose<Scalar>{end_effector_positions.col(checked(arm)),
                             Quaternion<Scalar>(end_effector_orientations.col(arm))};
     }
-    auto end_effector_twist(Index arm) const noexcept { return end_effector_twists.template segment<6>(6 * arm); }
+    auto end_effector_twist(Index arm) const noexcept
+    {
+        return end_effector_twists.template segment<6>(6 * checked(arm));
+    }
     auto object_acceleration() const noexcept { return accelerations.template head<6>(); }
     auto end_effector_acceleration(Index arm) const noexcept
     {
-        return accelerations.template segment<6>(6 * (arm + 1));
+        return accelerations.template segment<6>(6 * (checked(arm) + 1));
     }
     /// h_o, the wrench the end-effectors exert on the object (= -G h', (23)).
     auto object_wrench() const noexcept { return wrenches.template head<6>(); }
     /// h_i, the wrench the object exerts on end-effector i.
-    auto end_effector_wrench(Index arm) const noexcept { return wrenches.template segment<6>(6 * (arm + 1)); }
+    auto end_effector_wrench(Index arm) const noexcept
+    {
+        return wrenches.template segment<6>(6 * (checked(arm) + 1));
+    }
+    /// -h_i: the wrench end-effector i exerts on the object, at grasp point i (force, and torque
+    /// about the grasp point), in {w}.
+    Vector6<Scalar> wrench_on_object(Index arm) const noexcept { return -end_effector_wrench(arm); }
+    /// G_i (-h_i) (24): the same wrench moved to the object's centre of mass (torque about it).
+    /// The N of them sum to h_o.
+    Vector6<Scalar> wrench_on_object_at_centre(Index arm) const noexcept
+    {
+        return Force<Scalar>::from(wrench_on_object(arm)).shifted(grasp_offsets.col(arm)).vector();
+    }
     /// The end-effector part h' = [h_1; ...; h_N] (6N).
     auto end_effector_wrenches() const noexcept
     {
@@ -282,6 +336,13 @@ template <typename ModelType> struct Data {
         } else {
             return wrenches.template tail<end_effector_stack_size(Arms)>();
         }
+    }
+
+private:
+    Index checked(Index arm) const noexcept
+    {
+        COOPDYN_ASSERT(arm >= 0 && arm < arms(), "arm index out of range");
+        return arm;
     }
 };
 
