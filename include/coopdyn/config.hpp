@@ -127,9 +127,13 @@ namespace coopdyn::detail {
 /// Stops the program with `message` on stderr: the per-tick functions' answer to a caller error
 /// that would otherwise corrupt memory (a Data or input sized for another model). Cold and out of
 /// line so that the check costs one comparison on the hot path.
-[[noreturn]] inline void stop_on_misuse(const char* function, const char* message) noexcept
+[[noreturn]] inline void stop_on_misuse(const char* function, const char* message, Index arm = -1) noexcept
 {
-    std::fprintf(stderr, "coopdyn: %s: %s\n", function, message);
+    if (arm >= 0) {
+        std::fprintf(stderr, "coopdyn: %s: arm %lld: %s\n", function, static_cast<long long>(arm), message);
+    } else {
+        std::fprintf(stderr, "coopdyn: %s: %s\n", function, message);
+    }
     std::abort();
 }
 }  // namespace coopdyn::detail

@@ -17,6 +17,7 @@
 #include "coopdyn/model/rigid_object.hpp"
 #include "coopdyn/dynamics/cooperative_dynamics.hpp"
 #include "coopdyn/dynamics/energy.hpp"
+#include "coopdyn/dynamics/input_check.hpp"
 #include "coopdyn/dynamics/interaction_wrenches.hpp"
 #include "coopdyn/dynamics/simulator.hpp"
 #include "coopdyn/dynamics/udwadia_kalaba.hpp"

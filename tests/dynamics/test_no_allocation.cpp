@@ -7,6 +7,7 @@
 #include "../allocation_counter.hpp"
 
 #include "coopdyn/dynamics/cooperative_dynamics.hpp"
+#include "coopdyn/dynamics/input_check.hpp"
 #include "coopdyn/dynamics/interaction_wrenches.hpp"
 #include "coopdyn/dynamics/simulator.hpp"
 #include "coopdyn/dynamics/udwadia_kalaba.hpp"
@@ -133,6 +134,16 @@ template <typename ModelType> void expect_per_tick_path_does_not_allocate(Index 
     });
     EXPECT_EQ(dynamics.operator_new, 0);
     EXPECT_EQ(dynamics.eigen, 0);
+
+    bool inputs_ok = false;
+    const Allocations check = count_allocations([&] {
+        for (int tick = 0; tick < 10; ++tick) {
+            inputs_ok = static_cast<bool>(coopdyn::check_inputs(model, state, setpoints, disturbances));
+        }
+    });
+    EXPECT_TRUE(inputs_ok);
+    EXPECT_EQ(check.operator_new, 0);
+    EXPECT_EQ(check.eigen, 0);
     EXPECT_TRUE(data.wrenches.allFinite());
     EXPECT_GT(data.wrenches.norm(), 0.0);
 }

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "coopdyn/config.hpp"
+#include "coopdyn/dynamics/input_check.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
 #include "coopdyn/model/grasp.hpp"
 
@@ -24,6 +25,8 @@ void coordinate_setpoints(const ModelType& model, const RigidBodyState<typename 
 {
     using Scalar = typename ModelType::Scalar;
     COOPDYN_REQUIRE_SHAPE(setpoints.arms() == model.arms(), "setpoints sized for another number of arms");
+    COOPDYN_ASSERT_INPUTS(check_state(desired_object));
+    COOPDYN_ASSERT(detail::all_finite(desired_object_acceleration), "desired_object_acceleration must be finite");
     const Matrix3<Scalar> rotation = desired_object.pose.orientation.toRotationMatrix();
     const Vector3<Scalar> omega = desired_object.twist.template tail<3>();
     for (Index i = 0; i < model.arms(); ++i) {

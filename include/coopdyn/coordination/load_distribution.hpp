@@ -27,6 +27,7 @@
 #pragma once
 
 #include "coopdyn/config.hpp"
+#include "coopdyn/dynamics/input_check.hpp"
 #include "coopdyn/detail/fixed_cholesky.hpp"
 #include "coopdyn/detail/validation.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
@@ -458,6 +459,8 @@ public:
     {
         COOPDYN_REQUIRE_SHAPE(data.arms() == mass_weights_.size(), "Data was built for another number of arms");
         COOPDYN_REQUIRE_SHAPE(setpoints.arms() == mass_weights_.size(), "setpoints sized for another number of arms");
+        COOPDYN_ASSERT_INPUTS(detail::all_finite(object_wrench) ? InputCheck{}
+                                                                : InputCheck{InputProblem::object_wrench, no_arm});
         const bool distributed =
             try_distribute_load(data.grasp_offsets, mass_weights_, inertia_weights_, object_wrench, setpoints.wrenches);
         COOPDYN_ASSERT(distributed, "weights validated at construction cannot be degenerate");

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "coopdyn/config.hpp"
+#include "coopdyn/dynamics/input_check.hpp"
 #include "coopdyn/dynamics/interaction_wrenches.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
 #include "coopdyn/model/grasp.hpp"
@@ -21,6 +22,7 @@ void grasp_kinematics(const ModelType& model, Data<ModelType>& data,
 {
     using Scalar = typename ModelType::Scalar;
     COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms(), "Data was built for another model");
+    COOPDYN_ASSERT_INPUTS(check_state(object_state));
     data.object_state = object_state;
     data.object_rotation = object_state.pose.orientation.toRotationMatrix();
     data.object_rotational_inertia = model.object().rotational_inertia(data.object_rotation);
@@ -50,6 +52,8 @@ interaction_dynamics(const ModelType& model, Data<ModelType>& data,
     using Scalar = typename ModelType::Scalar;
     COOPDYN_REQUIRE_SHAPE(setpoints.arms() == model.arms(), "setpoints sized for another number of arms");
     COOPDYN_REQUIRE_SHAPE(disturbances.arms() == model.arms(), "disturbances sized for another number of arms");
+    // Unit quaternions and finite values (docs/conventions.md); check_inputs() in Release.
+    COOPDYN_ASSERT_INPUTS(check_inputs(model, object_state, setpoints, disturbances));
     grasp_kinematics(model, data, object_state);
 
     for (Index i = 0; i < model.arms(); ++i) {
