@@ -1,36 +1,8 @@
 /// \file
-/// \brief Everything in coopdyn: include this, or the individual headers.
+/// \brief Everything in coopdyn: the per-tick core (coopdyn/core.hpp) and the analysis
+/// (coopdyn/analysis.hpp). A controller that only needs the per-tick parts compiles much faster
+/// with coopdyn/core.hpp alone (README, "Headers").
 #pragma once
 
-#include "coopdyn/config.hpp"
-#include "coopdyn/errors.hpp"
-#include "coopdyn/spatial/inertia.hpp"
-#include "coopdyn/spatial/pose.hpp"
-#include "coopdyn/spatial/quaternion.hpp"
-#include "coopdyn/spatial/skew.hpp"
-#include "coopdyn/spatial/spatial_vector.hpp"
-#include "coopdyn/spatial/symmetric3.hpp"
-#include "coopdyn/model/cooperative_model.hpp"
-#include "coopdyn/model/grasp.hpp"
-#include "coopdyn/model/impedance_end_effector.hpp"
-#include "coopdyn/model/resolved_acceleration_end_effector.hpp"
-#include "coopdyn/model/rigid_object.hpp"
-#include "coopdyn/dynamics/cooperative_dynamics.hpp"
-#include "coopdyn/dynamics/energy.hpp"
-#include "coopdyn/dynamics/input_check.hpp"
-#include "coopdyn/dynamics/interaction_wrenches.hpp"
-#include "coopdyn/dynamics/simulator.hpp"
-#include "coopdyn/dynamics/udwadia_kalaba.hpp"
-#include "coopdyn/coordination/kinematic_coordination.hpp"
-#include "coopdyn/coordination/load_distribution.hpp"
-#include "coopdyn/analysis/apparent_impedance.hpp"
-#include "coopdyn/analysis/equation_error.hpp"
-#include "coopdyn/analysis/identification.hpp"
-#include "coopdyn/analysis/impedance_discretization.hpp"
-#include "coopdyn/analysis/impedance_synthesis.hpp"
-#include "coopdyn/analysis/internal_wrenches.hpp"
-#include "coopdyn/analysis/stability.hpp"
-#include "coopdyn/numerics/levenberg_marquardt.hpp"
-#include "coopdyn/numerics/linear_discretization.hpp"
-#include "coopdyn/numerics/matrix_exponential.hpp"
-#include "coopdyn/numerics/non_negative_least_squares.hpp"
+#include "coopdyn/core.hpp"
+#include "coopdyn/analysis.hpp"

@@ -320,6 +320,28 @@ TEST(ModelValidation, ResolvedAccelerationRefusesNonFiniteGains)
     expect_invalid([&] { ResolvedModel2 model(valid_object(), arms); }, {"arm 1", "'proportional_gain'"}, "K_P");
 }
 
+TEST(ModelValidation, ResolvedAccelerationRefusesNegativeGains)
+{
+    // docs/model.md: negative gains are refused. K_P = -100 I and a K_D with one negative
+    // eigenvalue used to be accepted.
+    auto arms = valid_resolved_arms();
+    arms[1].end_effector.proportional_gain = -100.0 * Matrix6d::Identity();
+    expect_invalid([&] { ResolvedModel2 model(valid_object(), arms); }, {"arm 1", "'proportional_gain'", "negative"},
+                   "K_P < 0");
+    arms = valid_resolved_arms();
+    arms[0].end_effector.derivative_gain(3, 3) = -0.5;
+    expect_invalid([&] { ResolvedModel2 model(valid_object(), arms); }, {"arm 0", "'derivative_gain'", "-0.5"},
+                   "one negative K_D entry");
+    // Non-symmetric gains with positive eigenvalues (Lambda^-1 D of a matched impedance) and zero
+    // gains (a free-floating end-effector) are accepted.
+    arms = valid_resolved_arms();
+    Matrix6d damping = 30.0 * Matrix6d::Identity();
+    damping(0, 1) = damping(1, 0) = 5.0;
+    arms[0].end_effector.derivative_gain = arms[0].end_effector.apparent_inertia.inverse() * damping;
+    arms[1].end_effector.proportional_gain.setZero();
+    EXPECT_NO_THROW(ResolvedModel2(valid_object(), arms));
+}
+
 TEST(ModelValidation, ResolvedAccelerationObjectChecksApplyToo)
 {
     auto object = valid_object();

@@ -459,8 +459,8 @@ public:
     {
         COOPDYN_REQUIRE_SHAPE(data.arms() == mass_weights_.size(), "Data was built for another number of arms");
         COOPDYN_REQUIRE_SHAPE(setpoints.arms() == mass_weights_.size(), "setpoints sized for another number of arms");
-        COOPDYN_ASSERT_INPUTS(detail::all_finite(object_wrench) ? InputCheck{}
-                                                                : InputCheck{InputProblem::object_wrench, no_arm});
+        COOPDYN_ASSERT_INPUTS((detail::all_finite(object_wrench) ? InputCheck{}
+                                                                 : InputCheck{InputProblem::object_wrench, no_arm}));
         const bool distributed =
             try_distribute_load(data.grasp_offsets, mass_weights_, inertia_weights_, object_wrench, setpoints.wrenches);
         COOPDYN_ASSERT(distributed, "weights validated at construction cannot be degenerate");

@@ -154,6 +154,27 @@ void require_symmetric_positive(const Eigen::MatrixBase<Derived>& matrix, const 
     }
 }
 
+/// A gain matrix with no negative gain: every eigenvalue has a non-negative real part (to
+/// relative 1e-12 of its largest entry). Gains need not be symmetric (e.g. Lambda^-1 D), but a
+/// direction in which the gain pushes the error away instead of back is refused.
+template <typename Derived>
+void require_non_negative_gain(const Eigen::MatrixBase<Derived>& matrix, const ErrorContext& context,
+                               const std::string& parameter)
+{
+    require_finite(matrix, context, parameter);
+    using Scalar = typename Derived::Scalar;
+    using Dense = Eigen::Matrix<double, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime>;
+    const Dense values = values_of(matrix);
+    const double scale = values.cwiseAbs().maxCoeff();
+    const Eigen::EigenSolver<Dense> eigen(values, /*computeEigenvectors=*/false);
+    const double smallest = eigen.eigenvalues().real().minCoeff();
+    if (smallest < -tolerance_for<Scalar>(1e-12) * scale) {
+        std::ostringstream problem;
+        problem << "must not be negative: an eigenvalue has real part " << smallest;
+        fail(context, parameter, problem.str());
+    }
+}
+
 /// A unit quaternion to 1e-9 (a quaternion is never normalised silently).
 template <typename Scalar>
 void require_unit_quaternion(const Quaternion<Scalar>& quaternion, const ErrorContext& context,

@@ -53,13 +53,14 @@ template <typename ScalarType> struct ResolvedAccelerationEndEffector {
                                    proportional_gain * pose_error(pose, desired));
     }
 
-    /// Throws InvalidModel naming the arm and the parameter: Lambda_i SPD, gains finite.
+    /// Throws InvalidModel naming the arm and the parameter: Lambda_i SPD, gains finite and not
+    /// negative (no eigenvalue with a negative real part; they need not be symmetric).
     void validate(Index arm) const
     {
         const detail::ErrorContext context = detail::arm_context(arm);
         detail::require_symmetric_positive(apparent_inertia, context, "apparent_inertia");
-        detail::require_finite(derivative_gain, context, "derivative_gain");
-        detail::require_finite(proportional_gain, context, "proportional_gain");
+        detail::require_non_negative_gain(derivative_gain, context, "derivative_gain");
+        detail::require_non_negative_gain(proportional_gain, context, "proportional_gain");
     }
 };
 
