@@ -5,7 +5,13 @@ int main()
 {
     using namespace coopdyn;
     // The paper's beam (docs/analysis.md): 1.75 kg, held by two impedance-controlled arms.
-    const ImpedanceEndEffector<double> arm{10.0, 0.5 * Eigen::Matrix3d::Identity(), 180.0, 10.0, 300.0, 50.0};
+    const auto arm = ImpedanceEndEffector<double>()
+                         .with_mass(10.0)
+                         .with_rotational_inertia(0.5 * Eigen::Matrix3d::Identity())
+                         .with_translational_damping(180.0)
+                         .with_rotational_damping(10.0)
+                         .with_translational_stiffness(300.0)
+                         .with_rotational_stiffness(50.0);
     const RigidObject<double> beam{1.75, Eigen::Vector3d(0.055, 0.0, 0.055).asDiagonal()};
     const ImpedanceModel2 model(beam, {{arm, {Eigen::Vector3d(0, -0.4, 0)}}, {arm, {Eigen::Vector3d(0, 0.4, 0)}}});
     Data data(model);

@@ -64,8 +64,11 @@ SampleRanges end_effector_ranges()
     ranges.impedance.translational_stiffness = {10.0, 500.0};
     ranges.impedance.rotational_stiffness = {5.0, 100.0};
     ranges.resolved_acceleration.inertia_scale = {0.5, 10.0};
-    ranges.resolved_acceleration.derivative_gain = {0.0, 1.0, -20.0, 20.0};
-    ranges.resolved_acceleration.proportional_gain = {0.0, 1.0, -100.0, 100.0};
+    // Full, non-symmetric gains, but no negative gain (a Model refuses those, docs/model.md):
+    // g I6 + B with |B_jk| <= 0.14 g, so every eigenvalue's real part is >= g (1 - 6 * 0.14) > 0
+    // (Gershgorin).
+    ranges.resolved_acceleration.derivative_gain = {20.0, 2.8, -1.0, 1.0};
+    ranges.resolved_acceleration.proportional_gain = {100.0, 14.0, -1.0, 1.0};
     return ranges;
 }
 

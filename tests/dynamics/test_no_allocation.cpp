@@ -142,6 +142,17 @@ template <typename ModelType> void expect_per_tick_path_does_not_allocate(Index 
         }
     });
     EXPECT_TRUE(inputs_ok);
+
+    // Gain scheduling between ticks: replacing an arm's parameters (validated) allocates nothing.
+    ModelType scheduled = model;
+    const auto end_effector = scheduled.end_effector(0);
+    const Allocations schedule = count_allocations([&] {
+        for (int tick = 0; tick < 10; ++tick) {
+            scheduled.set_end_effector(0, end_effector);
+        }
+    });
+    EXPECT_EQ(schedule.operator_new, 0);
+    EXPECT_EQ(schedule.eigen, 0);
     EXPECT_EQ(check.operator_new, 0);
     EXPECT_EQ(check.eigen, 0);
     EXPECT_TRUE(data.wrenches.allFinite());

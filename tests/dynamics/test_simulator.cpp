@@ -965,3 +965,29 @@ TEST(SimulatorLifetime, ATemporaryModelDoesNotCompile)
     static_assert(!std::is_constructible_v<Sim2, Model2, double, const State&>);
     SUCCEED();
 }
+
+TEST(SimulatorGainScheduling, ASimulatorUsesStiffnessSetOnItsModelBetweenSteps)
+{
+    // Pushed with 10 N along x, the beam settles at 10 / (k_1 + k_2) = 10/600 m; after both
+    // stiffnesses are raised to 900 N/m on the model the simulator holds (Model::set_end_effector,
+    // no rebuild), it settles at 10/1800 m (the restoring force is exactly linear in translation).
+    Beam beam = section9_beam();
+    Vec6 load = Vec6::Zero();
+    load(0) = 10.0;
+    Sim2 sim(beam.model, 1e-3, beam.equilibrium, Integrator::runge_kutta_4);
+    sim.setpoints() = beam.setpoints;
+    sim.disturbances().object = load;
+    for (Index k = 0; k < 6500; ++k) {
+        sim.step();
+    }
+    EXPECT_NEAR((sim.state().pose.position - beam.equilibrium.pose.position).x(), 10.0 / 600.0, 1e-6);
+    for (Index i = 0; i < 2; ++i) {
+        beam.model.set_end_effector(i, beam.model.end_effector(i).with_translational_stiffness(900.0));
+    }
+    for (Index k = 0; k < 6500; ++k) {  // slowest pole with k = 900: about -2.7 1/s
+        sim.step();
+    }
+    const double displacement = (sim.state().pose.position - beam.equilibrium.pose.position).x();
+    std::printf("[ gains ] after k -> 900 N/m: displacement %.9f m (10/1800 = %.9f)\n", displacement, 10.0 / 1800.0);
+    EXPECT_NEAR(displacement, 10.0 / 1800.0, 1e-7);
+}

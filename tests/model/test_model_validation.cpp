@@ -342,6 +342,48 @@ TEST(ModelValidation, ResolvedAccelerationRefusesNegativeGains)
     EXPECT_NO_THROW(ResolvedModel2(valid_object(), arms));
 }
 
+TEST(ModelValidation, NamedConstructionSetsEachFieldByName)
+{
+    const Matrix3d inertia = Eigen::Vector3d(0.4, 0.5, 0.6).asDiagonal();
+    const auto named = coopdyn::ImpedanceEndEffector<double>()
+                           .with_mass(10.0)
+                           .with_rotational_inertia(inertia)
+                           .with_translational_damping(180.0)
+                           .with_rotational_damping(10.0)
+                           .with_translational_stiffness(300.0)
+                           .with_rotational_stiffness(50.0);
+    EXPECT_EQ(named.mass, 10.0);
+    EXPECT_EQ(named.rotational_inertia, inertia);
+    EXPECT_EQ(named.translational_damping, 180.0);
+    EXPECT_EQ(named.rotational_damping, 10.0);
+    EXPECT_EQ(named.translational_stiffness, 300.0);
+    EXPECT_EQ(named.rotational_stiffness, 50.0);
+}
+
+TEST(ModelValidation, SetEndEffectorValidatesNamesTheArmAndKeepsTheModelOnError)
+{
+    Model2 model(valid_object(), valid_impedance_arms());
+    const Eigen::Matrix<double, 6, 12> before = model.end_effector_inertias();
+    auto arm = model.end_effector(1);
+    arm.rotational_stiffness = -1.0;
+    expect_invalid([&] { model.set_end_effector(1, arm); }, {"arm 1", "'rotational_stiffness'"}, "kappa < 0");
+    arm = model.end_effector(1);
+    arm.mass = 0.0;
+    expect_invalid([&] { model.set_end_effector(1, arm); }, {"arm 1", "'mass'"}, "m = 0");
+    expect_invalid([&] { model.set_end_effector(2, model.end_effector(0)); }, {"'arm'"}, "arm 2 of 2");
+    EXPECT_EQ(model.end_effector_inertias(), before);
+    EXPECT_EQ(model.end_effector(1).mass, valid_impedance_arms()[1].end_effector.mass);
+
+    // A valid replacement updates every cached form of M_i.
+    arm = model.end_effector(0).with_mass(7.5).with_rotational_inertia(Matrix3d::Identity() * 0.25);
+    model.set_end_effector(0, arm);
+    EXPECT_EQ(model.end_effector_masses()(0), 7.5);
+    EXPECT_EQ(model.end_effector_inertia(0).mass(), 7.5);
+    EXPECT_EQ(model.end_effector_inertias()(0, 0), 7.5);
+    EXPECT_EQ(model.end_effector_inertias()(4, 4), 0.25);
+    EXPECT_EQ(model.end_effector_rotational_inertias()(2, 2), 0.25);
+}
+
 TEST(ModelValidation, ResolvedAccelerationObjectChecksApplyToo)
 {
     auto object = valid_object();

@@ -89,6 +89,10 @@ inline ErrorContext argument_context(std::string component, Index arm = no_arm)
     return {ErrorKind::argument, std::move(component), arm};
 }
 
+// The require_* checks take the parameter's name as a C string and build strings only when they
+// fail, so that a check that passes allocates nothing (Model::set_end_effector runs them at run
+// time, between ticks).
+
 [[noreturn]] inline void fail(const ErrorContext& context, const std::string& parameter, const std::string& problem)
 {
     if (context.kind == ErrorKind::model) {
@@ -98,7 +102,7 @@ inline ErrorContext argument_context(std::string component, Index arm = no_arm)
 }
 
 template <typename Scalar>
-void require_positive(const Scalar& scalar, const ErrorContext& context, const std::string& parameter)
+void require_positive(const Scalar& scalar, const ErrorContext& context, const char* parameter)
 {
     const double value = value_of(scalar);
     if (!std::isfinite(value) || !(value > 0.0)) {
@@ -109,7 +113,7 @@ void require_positive(const Scalar& scalar, const ErrorContext& context, const s
 }
 
 template <typename Scalar>
-void require_non_negative(const Scalar& scalar, const ErrorContext& context, const std::string& parameter)
+void require_non_negative(const Scalar& scalar, const ErrorContext& context, const char* parameter)
 {
     const double value = value_of(scalar);
     if (!std::isfinite(value) || !(value >= 0.0)) {
@@ -121,7 +125,7 @@ void require_non_negative(const Scalar& scalar, const ErrorContext& context, con
 
 template <typename Derived>
 void require_finite(const Eigen::MatrixBase<Derived>& matrix, const ErrorContext& context,
-                    const std::string& parameter)
+                    const char* parameter)
 {
     if (!values_of(matrix).allFinite()) {
         fail(context, parameter, "must be finite (contains NaN or Inf)");
@@ -132,7 +136,7 @@ void require_finite(const Eigen::MatrixBase<Derived>& matrix, const ErrorContext
 /// allow_semidefinite, positive semi-definite to the same relative tolerance).
 template <typename Derived>
 void require_symmetric_positive(const Eigen::MatrixBase<Derived>& matrix, const ErrorContext& context,
-                                const std::string& parameter, bool allow_semidefinite = false)
+                                const char* parameter, bool allow_semidefinite = false)
 {
     require_finite(matrix, context, parameter);
     using Scalar = typename Derived::Scalar;
@@ -159,7 +163,7 @@ void require_symmetric_positive(const Eigen::MatrixBase<Derived>& matrix, const 
 /// direction in which the gain pushes the error away instead of back is refused.
 template <typename Derived>
 void require_non_negative_gain(const Eigen::MatrixBase<Derived>& matrix, const ErrorContext& context,
-                               const std::string& parameter)
+                               const char* parameter)
 {
     require_finite(matrix, context, parameter);
     using Scalar = typename Derived::Scalar;
@@ -178,7 +182,7 @@ void require_non_negative_gain(const Eigen::MatrixBase<Derived>& matrix, const E
 /// A unit quaternion to 1e-9 (a quaternion is never normalised silently).
 template <typename Scalar>
 void require_unit_quaternion(const Quaternion<Scalar>& quaternion, const ErrorContext& context,
-                             const std::string& parameter)
+                             const char* parameter)
 {
     require_finite(quaternion.coeffs(), context, parameter);
     const double norm = values_of(quaternion.coeffs()).norm();

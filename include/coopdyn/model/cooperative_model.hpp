@@ -68,7 +68,6 @@ public:
         object_.validate();
         detail::require_finite(gravity_, detail::model_context(), "gravity");
         const Index count = static_cast<Index>(arms.size());
-        end_effectors_.reserve(arms.size());
         grasp_offsets_body_.resize(3, count);
         grasp_orientations_body_.resize(4, count);
         end_effector_masses_.resize(count);
@@ -77,22 +76,40 @@ public:
         if constexpr (Arms == Dynamic) {
             inertias_.resize(arms.size());
         }
+        end_effectors_.resize(arms.size());
         for (Index i = 0; i < count; ++i) {
             const ArmType& arm = arms[static_cast<std::size_t>(i)];
-            arm.end_effector.validate(i);
             const detail::ErrorContext context = detail::arm_context(i);
             detail::require_finite(arm.grasp_body.position, context, "grasp_body.position");
             detail::require_unit_quaternion(arm.grasp_body.orientation, context, "grasp_body.orientation");
-            end_effectors_.push_back(arm.end_effector);
             grasp_offsets_body_.col(i) = arm.grasp_body.position;
             grasp_orientations_body_.col(i) = arm.grasp_body.orientation.coeffs();
-            inertias_[static_cast<std::size_t>(i)] = arm.end_effector.inertia();
-            const Matrix6<Scalar> inertia = inertias_[static_cast<std::size_t>(i)].matrix();
-            end_effector_inertias_.template block<6, 6>(0, 6 * i) = inertia;
-            end_effector_masses_(i) = inertia(0, 0);
-            end_effector_rotational_inertias_.template block<3, 3>(0, 3 * i) =
-                inertia.template bottomRightCorner<3, 3>();
+            set_end_effector(i, arm.end_effector);
         }
+    }
+
+    /// \brief Replaces the end-effector model of arm `arm` (gain scheduling: new stiffness,
+    /// damping or inertia between ticks), validated as at construction. Throws InvalidModel
+    /// naming the arm and the parameter, and then leaves the model unchanged. Allocates nothing.
+    /// A Simulator holding this model (by reference) uses the new parameters from its next step;
+    /// a Data needs nothing (its sizes do not change).
+    ///
+    ///     auto arm = model.end_effector(0);
+    ///     arm.translational_stiffness = 600.0;
+    ///     model.set_end_effector(0, arm);
+    void set_end_effector(Index arm, const EndEffectorModel& end_effector)
+    {
+        if (arm < 0 || arm >= arms()) {
+            detail::fail(detail::model_context(), "arm", "index " + std::to_string(arm) + " is not an arm of this model");
+        }
+        end_effector.validate(arm);
+        const auto index = static_cast<std::size_t>(arm);
+        end_effectors_[index] = end_effector;
+        inertias_[index] = end_effector.inertia();
+        const Matrix6<Scalar> inertia = inertias_[index].matrix();
+        end_effector_inertias_.template block<6, 6>(0, 6 * arm) = inertia;
+        end_effector_masses_(arm) = inertia(0, 0);
+        end_effector_rotational_inertias_.template block<3, 3>(0, 3 * arm) = inertia.template bottomRightCorner<3, 3>();
     }
 
     /// N.
@@ -183,6 +200,13 @@ template <int Arms> Index checked_arm_count(Index arms, const char* component)
     }
     return arms;
 }
+/// `arm`, asserted (debug builds) to be an arm index of a container of `arms` arms.
+inline Index checked_arm(Index arm, Index arms) noexcept
+{
+    COOPDYN_ASSERT(arm >= 0 && arm < arms, "arm index out of range");
+    (void)arms;
+    return arm;
+}
 }  // namespace detail
 
 /// \brief Per-tick inputs of the end-effector controllers: desired poses x_i^d, twists
@@ -229,11 +253,7 @@ template <typename Scalar, int Arms> struct Setpoints {
     auto wrench(Index arm) const noexcept { return wrenches.template segment<6>(6 * checked(arm)); }
 
 private:
-    Index checked(Index arm) const noexcept
-    {
-        COOPDYN_ASSERT(arm >= 0 && arm < arms(), "arm index out of range");
-        return arm;
-    }
+    Index checked(Index arm) const noexcept { return detail::checked_arm(arm, arms()); }
 };
 
 /// \brief Disturbance wrenches: htilde_o on the object (8) and htilde_i on each end-effector (1).
@@ -254,11 +274,7 @@ template <typename Scalar, int Arms> struct Disturbances {
     auto end_effector(Index arm) const noexcept { return end_effectors.template segment<6>(6 * checked(arm)); }
 
 private:
-    Index checked(Index arm) const noexcept
-    {
-        COOPDYN_ASSERT(arm >= 0 && arm < arms(), "arm index out of range");
-        return arm;
-    }
+    Index checked(Index arm) const noexcept { return detail::checked_arm(arm, arms()); }
 };
 
 /// \brief Buffers and results of the per-tick algorithms for one Model. Build once, reuse every
@@ -339,11 +355,7 @@ template <typename ModelType> struct Data {
     }
 
 private:
-    Index checked(Index arm) const noexcept
-    {
-        COOPDYN_ASSERT(arm >= 0 && arm < arms(), "arm index out of range");
-        return arm;
-    }
+    Index checked(Index arm) const noexcept { return detail::checked_arm(arm, arms()); }
 };
 
 template <typename Scalar, int Arms, template <typename> class EndEffectorTemplate>

@@ -34,6 +34,41 @@ template <typename ScalarType> struct ImpedanceEndEffector {
     Scalar translational_stiffness = Scalar(0);                       ///< k_i, N/m
     Scalar rotational_stiffness = Scalar(0);                          ///< kappa_i, N m/rad
 
+    /// Named construction, so that the four scalar gains cannot be swapped unnoticed:
+    ///
+    ///     const auto arm = ImpedanceEndEffector<double>()
+    ///                          .with_mass(10.0)
+    ///                          .with_rotational_inertia(0.5 * Eigen::Matrix3d::Identity())
+    ///                          .with_translational_damping(180.0)
+    ///                          .with_rotational_damping(10.0)
+    ///                          .with_translational_stiffness(300.0)
+    ///                          .with_rotational_stiffness(50.0);
+    ///
+    /// Each returns a copy with one field set (the aggregate's fields can also be set by name).
+    ImpedanceEndEffector with_mass(const Scalar& value) const { return with(&ImpedanceEndEffector::mass, value); }
+    template <typename Derived> ImpedanceEndEffector with_rotational_inertia(const Eigen::MatrixBase<Derived>& value) const
+    {
+        ImpedanceEndEffector result = *this;
+        result.rotational_inertia = value;
+        return result;
+    }
+    ImpedanceEndEffector with_translational_damping(const Scalar& value) const
+    {
+        return with(&ImpedanceEndEffector::translational_damping, value);
+    }
+    ImpedanceEndEffector with_rotational_damping(const Scalar& value) const
+    {
+        return with(&ImpedanceEndEffector::rotational_damping, value);
+    }
+    ImpedanceEndEffector with_translational_stiffness(const Scalar& value) const
+    {
+        return with(&ImpedanceEndEffector::translational_stiffness, value);
+    }
+    ImpedanceEndEffector with_rotational_stiffness(const Scalar& value) const
+    {
+        return with(&ImpedanceEndEffector::rotational_stiffness, value);
+    }
+
     /// M_i = diag(m_i I3, J_i) of (1).
     Inertia inertia() const { return Inertia(mass, rotational_inertia); }
 
@@ -98,6 +133,14 @@ template <typename ScalarType> struct ImpedanceEndEffector {
         detail::require_non_negative(rotational_damping, context, "rotational_damping");
         detail::require_non_negative(translational_stiffness, context, "translational_stiffness");
         detail::require_non_negative(rotational_stiffness, context, "rotational_stiffness");
+    }
+
+private:
+    ImpedanceEndEffector with(Scalar ImpedanceEndEffector::*field, const Scalar& value) const
+    {
+        ImpedanceEndEffector result = *this;
+        result.*field = value;
+        return result;
     }
 };
 
