@@ -104,18 +104,25 @@ void* operator new[](std::size_t size, std::align_val_t alignment, const std::no
     return allocation_counter::allocate_aligned(size, alignment);
 }
 
-void operator delete(void* pointer) noexcept { std::free(pointer); }
-void operator delete[](void* pointer) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::size_t) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::size_t) noexcept { std::free(pointer); }
-void operator delete(void* pointer, const std::nothrow_t&) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, const std::nothrow_t&) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::align_val_t) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::align_val_t) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::size_t, std::align_val_t) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::size_t, std::align_val_t) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::align_val_t, const std::nothrow_t&) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::align_val_t, const std::nothrow_t&) noexcept { std::free(pointer); }
+namespace allocation_counter {
+// Not inlined on purpose: with optimisation GCC inlines std::free into callers that obtained the
+// pointer from operator new and reports -Wmismatched-new-delete, although both replacements here
+// use malloc/free consistently.
+[[gnu::noinline]] inline void release(void* pointer) noexcept { std::free(pointer); }
+}  // namespace allocation_counter
+
+void operator delete(void* pointer) noexcept { allocation_counter::release(pointer); }
+void operator delete[](void* pointer) noexcept { allocation_counter::release(pointer); }
+void operator delete(void* pointer, std::size_t) noexcept { allocation_counter::release(pointer); }
+void operator delete[](void* pointer, std::size_t) noexcept { allocation_counter::release(pointer); }
+void operator delete(void* pointer, const std::nothrow_t&) noexcept { allocation_counter::release(pointer); }
+void operator delete[](void* pointer, const std::nothrow_t&) noexcept { allocation_counter::release(pointer); }
+void operator delete(void* pointer, std::align_val_t) noexcept { allocation_counter::release(pointer); }
+void operator delete[](void* pointer, std::align_val_t) noexcept { allocation_counter::release(pointer); }
+void operator delete(void* pointer, std::size_t, std::align_val_t) noexcept { allocation_counter::release(pointer); }
+void operator delete[](void* pointer, std::size_t, std::align_val_t) noexcept { allocation_counter::release(pointer); }
+void operator delete(void* pointer, std::align_val_t, const std::nothrow_t&) noexcept { allocation_counter::release(pointer); }
+void operator delete[](void* pointer, std::align_val_t, const std::nothrow_t&) noexcept { allocation_counter::release(pointer); }
 
 #include <Eigen/Core>
 
