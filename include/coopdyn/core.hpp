@@ -26,3 +26,4 @@
 #include "coopdyn/dynamics/udwadia_kalaba.hpp"
 #include "coopdyn/coordination/kinematic_coordination.hpp"
 #include "coopdyn/coordination/load_distribution.hpp"
+#include "coopdyn/coordination/grasp_squeeze.hpp"

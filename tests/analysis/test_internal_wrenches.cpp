@@ -21,6 +21,7 @@
 
 #include "coopdyn/analysis/internal_wrenches.hpp"
 #include "coopdyn/coordination/kinematic_coordination.hpp"
+#include "coopdyn/coordination/grasp_squeeze.hpp"
 #include "coopdyn/coordination/load_distribution.hpp"
 #include "coopdyn/dynamics/cooperative_dynamics.hpp"
 #include "coopdyn/model/resolved_acceleration_end_effector.hpp"
@@ -685,6 +686,7 @@ template <typename ModelType> void expect_full_tick_does_not_allocate(Index arms
     state.twist += 0.1 * Vector6d(random_vector(6, rng));
     disturbances.object = random_vector(6, rng);
     disturbances.end_effectors = random_vector(6 * arms, rng);
+    coopdyn::EndEffectorVector<double, Arms> squeeze = coopdyn::EndEffectorVector<double, Arms>::Zero(6 * arms);
 
     const Allocations counts = count_allocations([&] {
         for (int tick = 0; tick < 10; ++tick) {
@@ -693,6 +695,7 @@ template <typename ModelType> void expect_full_tick_does_not_allocate(Index arms
             load.distribute(data, coopdyn::tracking_object_wrench(model, desired, desired_acceleration), setpoints);
             coopdyn::interaction_dynamics(model, data, state, setpoints, disturbances);
             coopdyn::decompose_wrenches(model, data, decomposition);
+            coopdyn::squeeze_wrenches(load, data, squeeze);
         }
     });
     std::printf("[full tick, N = %ld%s] operator new calls %ld, Eigen heap allocations %ld\n", static_cast<long>(arms),
@@ -702,6 +705,7 @@ template <typename ModelType> void expect_full_tick_does_not_allocate(Index arms
     EXPECT_TRUE(decomposition.internal.allFinite());
     EXPECT_TRUE(decomposition.external.allFinite());
     EXPECT_GT(decomposition.internal.norm(), 0.0);  // the state is off the setpoints: squeezing
+    EXPECT_GT(squeeze.norm(), 0.0);
 }
 
 TEST(NoAllocation, FullTickFixedTwoArms) { expect_full_tick_does_not_allocate<coopdyn::Model<double, 2>>(2); }

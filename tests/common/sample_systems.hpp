@@ -84,6 +84,15 @@ inline MatrixXd random_spd(Index size, Rng& rng, double scale = 1.0, double floo
     return scale * (factor * factor.transpose() + floor * MatrixXd::Identity(size, size));
 }
 
+/// A rotational inertia of a real rigid body: J = (tr(S) I - S) / 2 for S = random_spd(3, ...),
+/// a random second moment of mass, so the principal moments (s_j + s_k) / 2 satisfy the triangle
+/// inequality (the Model refuses inertias that do not). The same draws as random_spd.
+inline Matrix3d random_body_inertia(Rng& rng, double scale = 1.0, double floor = 0.5)
+{
+    const Matrix3d second_moment = random_spd(3, rng, scale, floor);
+    return 0.5 * (second_moment.trace() * Matrix3d::Identity() - second_moment);
+}
+
 // Unit quaternions. All four are uniformly distributed rotations; they differ in the draws and in
 // how the draws are assigned to the coefficients, and each keeps the seeded cases of its users.
 
@@ -262,6 +271,34 @@ inline MatrixXd literal_grasp_matrix(const MatrixXd& r)
     return g;
 }
 
+/// Load-distribution weights as plain numbers: m*_i (N) and J*_i side by side (3 x 3N).
+struct Weights {
+    VectorXd mass;     // N
+    MatrixXd inertia;  // 3 x 3N
+};
+
+/// W = blkdiag(diag(m*_i I3, J*_i)), 6N x 6N.
+inline MatrixXd weight_matrix(const Weights& weights)
+{
+    const Index arms = weights.mass.size();
+    MatrixXd w = MatrixXd::Zero(6 * arms, 6 * arms);
+    for (Index i = 0; i < arms; ++i) {
+        w.block(6 * i, 6 * i, 3, 3) = weights.mass(i) * Matrix3d::Identity();
+        w.block(6 * i + 3, 6 * i + 3, 3, 3) = weights.inertia.block(0, 3 * i, 3, 3);
+    }
+    return w;
+}
+
+/// The weighted least-norm right inverse W G^T (G W G^T)^-1 of a grasp matrix (dense, no
+/// centroid shift): the minimiser of sum_i hbar_i^T (M*_i)^-1 hbar_i subject to G hbar = h_o, a
+/// second method for the weighted inverse (25).
+inline MatrixXd least_norm_right_inverse(const MatrixXd& g, const Weights& weights)
+{
+    const MatrixXd w = weight_matrix(weights);
+    const MatrixXd gram = g * w * g.transpose();
+    return w * g.transpose() * gram.partialPivLu().inverse();
+}
+
 /// |a - b| / |b|.
 template <typename DerivedA, typename DerivedB>
 double relative_error(const Eigen::MatrixBase<DerivedA>& a, const Eigen::MatrixBase<DerivedB>& b)
@@ -407,7 +444,7 @@ inline coopdyn::RigidObject<double> random_object(Rng& rng, const ObjectRanges& 
     coopdyn::RigidObject<double> object;
     object.mass = ranges.mass(rng);
     const double scale = ranges.inertia_scale(rng);
-    object.inertia_body = random_spd(3, rng, scale, ranges.inertia_floor);
+    object.inertia_body = random_body_inertia(rng, scale, ranges.inertia_floor);
     return object;
 }
 

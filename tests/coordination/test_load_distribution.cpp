@@ -55,6 +55,9 @@ using coopdyn_test::uniform;
 using coopdyn_test::Vector3d;
 using coopdyn_test::Vector6d;
 using coopdyn_test::VectorXd;
+using coopdyn_test::Weights;
+using coopdyn_test::least_norm_right_inverse;
+using coopdyn_test::weight_matrix;
 using Index = Eigen::Index;
 
 // ---------------------------------------------------------------------------------------------
@@ -62,11 +65,6 @@ using Index = Eigen::Index;
 // ---------------------------------------------------------------------------------------------
 
 /// A random weighting of a grasp: m*_i in [0.5, 5], J*_i general SPD (fully coupled).
-struct Weights {
-    VectorXd mass;     // N
-    MatrixXd inertia;  // 3 x 3N
-};
-
 Weights random_weights(Index arms, Rng& rng)
 {
     Weights weights{VectorXd(arms), MatrixXd(3, 3 * arms)};
@@ -80,26 +78,6 @@ Weights random_weights(Index arms, Rng& rng)
 Vector3d weighted_centroid(const MatrixXd& r, const VectorXd& mass)
 {
     return r * mass / mass.sum();
-}
-
-/// W = blkdiag(diag(m*_i I3, J*_i)), 6N x 6N.
-MatrixXd weight_matrix(const Weights& weights)
-{
-    const Index arms = weights.mass.size();
-    MatrixXd w = MatrixXd::Zero(6 * arms, 6 * arms);
-    for (Index i = 0; i < arms; ++i) {
-        w.block(6 * i, 6 * i, 6, 6) =
-            block_diagonal_inertia(weights.mass(i), weights.inertia.block(0, 3 * i, 3, 3));
-    }
-    return w;
-}
-
-/// Second method: the weighted least-norm right inverse W G^T (G W G^T)^-1 (dense, no centroid).
-MatrixXd least_norm_right_inverse(const MatrixXd& g, const Weights& weights)
-{
-    const MatrixXd w = weight_matrix(weights);
-    const MatrixXd gram = g * w * g.transpose();
-    return w * g.transpose() * gram.partialPivLu().inverse();
 }
 
 /// The same least-norm inverse in long double, from the literal G: a reference accurate enough to

@@ -96,7 +96,7 @@ template <typename EndEffector> Scenario<EndEffector> random_scenario(Index arms
 {
     Scenario<EndEffector> s;
     s.object_mass = uniform(rng, 0.2, 5.0);
-    s.object_inertia_body = random_spd(3, rng, uniform(rng, 0.01, 1.0), 0.2);
+    s.object_inertia_body = coopdyn_test::random_body_inertia(rng, uniform(rng, 0.01, 1.0), 0.2);
     s.gravity = Vector3d(uniform(rng, -1.0, 1.0), uniform(rng, -1.0, 1.0), uniform(rng, -10.5, -9.0));
     s.end_effectors.resize(static_cast<std::size_t>(arms));
     for (EndEffector& e : s.end_effectors) {

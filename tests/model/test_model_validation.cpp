@@ -52,6 +52,14 @@ coopdyn::RigidObject<double> valid_object()
     return object;
 }
 
+/// diag(moments) in axes rotated by a fixed, generic rotation (symmetrised).
+Matrix3d rotated_diagonal(const Vector3d& moments)
+{
+    const Matrix3d rotation = Eigen::AngleAxisd(0.9, Vector3d(-1.0, 2.0, 0.5).normalized()).toRotationMatrix();
+    const Matrix3d inertia = rotation * moments.asDiagonal() * rotation.transpose();
+    return 0.5 * (inertia + inertia.transpose());
+}
+
 std::vector<ImpedanceArm> valid_impedance_arms()
 {
     std::vector<ImpedanceArm> arms(2);
@@ -141,7 +149,9 @@ TEST(ModelValidation, RefusesInvalidObjectInertia)
                           {"NaN", with_nan, "finite"},
                           {"Inf", with_inf, "finite"},
                           {"slightly negative", slightly_negative, "definite"},
-                          {"negative definite", -Matrix3d::Identity(), "definite"}};
+                          {"negative definite", -Matrix3d::Identity(), "definite"},
+                          // Positive definite, but no rigid body has J_xx > J_yy + J_zz.
+                          {"triangle inequality", rotated_diagonal(Vector3d(0.1, 0.03, 0.05)), "triangle inequality"}};
     for (const Case& c : cases) {
         auto object = valid_object();
         object.inertia_body = c.inertia;
@@ -163,6 +173,26 @@ TEST(ModelValidation, AcceptsThinBeamWithZeroPrincipalMoment)
     EXPECT_NO_THROW({ Model2 model(object, valid_impedance_arms()); });
     const Model2 model(object, valid_impedance_arms());
     EXPECT_EQ(model.object().inertia_body, object.inertia_body);
+}
+
+TEST(ModelValidation, TriangleInequalityAcceptsItsLimitsAndAppliesToTheObjectOnly)
+{
+    // Equality is a real limit: a flat plate (J_zz = J_xx + J_yy) and a thin rod, in any axes.
+    auto object = valid_object();
+    for (const Vector3d& moments : {Vector3d(0.103, 0.103, 0.206), Vector3d(0.0, 0.055, 0.055),
+                                    Vector3d(0.03, 0.07, 0.1)}) {
+        object.inertia_body = rotated_diagonal(moments);
+        EXPECT_NO_THROW({ Model2 model(object, valid_impedance_arms()); }) << moments.transpose();
+    }
+    // Just beyond it (by 1e-6 relative) is refused.
+    object.inertia_body = rotated_diagonal(Vector3d(0.03, 0.07, 0.1 * (1.0 + 1e-6)));
+    expect_invalid([&] { Model2 model(object, valid_impedance_arms()); },
+                   {"object", "'inertia_body'", "triangle inequality"}, "plate beyond the limit");
+    // The end-effector's J_i is the desired apparent inertia of a controller, not a body: any
+    // symmetric positive definite J_i is accepted (docs/model.md).
+    auto arms = valid_impedance_arms();
+    arms[1].end_effector.rotational_inertia = rotated_diagonal(Vector3d(0.1, 0.01, 1.0));
+    EXPECT_NO_THROW({ Model2 model(valid_object(), arms); });
 }
 
 // --- End-effectors ---------------------------------------------------------------------------

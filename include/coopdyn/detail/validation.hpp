@@ -158,6 +158,27 @@ void require_symmetric_positive(const Eigen::MatrixBase<Derived>& matrix, const 
     }
 }
 
+/// The rotational inertia of a real rigid body: its principal moments (eigenvalues) satisfy the
+/// triangle inequality, largest <= sum of the other two (to relative 1e-9): J = tr(S) I - S for
+/// the body's second moment of mass S >= 0, so J_xx = S_yy + S_zz <= J_yy + J_zz. Equality is a
+/// thin rod or a flat plate. Call after require_symmetric_positive.
+template <typename Derived>
+void require_triangle_inequality(const Eigen::MatrixBase<Derived>& matrix, const ErrorContext& context,
+                                 const char* parameter)
+{
+    using Scalar = typename Derived::Scalar;
+    const Eigen::Matrix3d values = values_of(matrix);
+    const Eigen::Vector3d moments =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(values, Eigen::EigenvaluesOnly).eigenvalues();
+    if (moments(2) > moments(0) + moments(1) + tolerance_for<Scalar>(1e-9) * moments(2)) {
+        std::ostringstream problem;
+        problem << "is not the inertia of a rigid body: its largest principal moment " << moments(2)
+                << " exceeds the sum of the other two, " << moments(0) << " + " << moments(1)
+                << " (triangle inequality)";
+        fail(context, parameter, problem.str());
+    }
+}
+
 /// A gain matrix with no negative gain: every eigenvalue has a non-negative real part (to
 /// relative 1e-12 of its largest entry). Gains need not be symmetric (e.g. Lambda^-1 D), but a
 /// direction in which the gain pushes the error away instead of back is refused.

@@ -63,12 +63,15 @@ template <typename Scalar> struct RigidObject {
         return disturbance - coriolis_wrench(world_rotational_inertia, twist) - gravity_wrench(gravity);
     }
 
-    /// Throws InvalidModel naming the parameter if mass or inertia_body is invalid.
+    /// Throws InvalidModel naming the parameter if mass or inertia_body is invalid: mass positive,
+    /// inertia_body symmetric positive semi-definite with principal moments that satisfy the
+    /// triangle inequality (a rigid body's; docs/model.md, "Degenerate parameters").
     void validate() const
     {
         detail::require_positive(mass, detail::object_context(), "mass");
         detail::require_symmetric_positive(inertia_body, detail::object_context(), "inertia_body",
                                            /*allow_semidefinite=*/true);
+        detail::require_triangle_inequality(inertia_body, detail::object_context(), "inertia_body");
     }
 };
 
