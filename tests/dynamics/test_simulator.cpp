@@ -953,8 +953,32 @@ TEST(SimulatorStatus, NanInputFailsTheFirstStepAndKeepsTheState)
     EXPECT_FALSE(status.ok);
     EXPECT_EQ(status.failed_step, 0);
     EXPECT_EQ(status.failed_time, 0.0);
+    EXPECT_EQ(status.input.problem, coopdyn::InputProblem::object_disturbance);
     EXPECT_EQ(sim.state().pose.position, system.initial.pose.position);
     EXPECT_EQ(sim.state().twist, system.initial.twist);
+}
+
+TEST(SimulatorStatus, ANonUnitSetpointQuaternionFailsItsStepInEveryBuild)
+{
+    // The inputs are checked before the dynamics see them, so a debug build reports the status
+    // instead of stopping on the dynamics' input assertion.
+    const ConservativeSystem system = ConservativeSystem::build(3);
+    Sim3 sim(system.model, 1e-3, system.initial);
+    sim.setpoints() = system.setpoints;
+    const auto inputs = [&](double, Setpoints3& setpoints, Disturbances3&) {
+        if (sim.steps() >= 5) {
+            setpoints.orientations.col(1) *= 3.0;
+        }
+    };
+    EXPECT_TRUE(sim.run(5, inputs, [](double, const State&, const auto&) {}).ok);
+    const auto& status = sim.step(inputs);
+    EXPECT_FALSE(status.ok);
+    EXPECT_EQ(status.failed_step, 5);
+    EXPECT_EQ(status.input.problem, coopdyn::InputProblem::setpoint_orientation);
+    EXPECT_EQ(status.input.arm, 1);
+    sim.reset(system.initial);
+    EXPECT_TRUE(sim.status().ok);
+    EXPECT_TRUE(sim.status().input.ok());
 }
 
 TEST(SimulatorLifetime, ATemporaryModelDoesNotCompile)

@@ -7,6 +7,7 @@
 #include "coopdyn/config.hpp"
 #include "coopdyn/detail/validation.hpp"
 #include "coopdyn/dynamics/cooperative_dynamics.hpp"
+#include "coopdyn/dynamics/input_check.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
 #include "coopdyn/spatial/quaternion.hpp"
 
@@ -39,15 +40,20 @@ enum class InputHold {
     zero_order,
 };
 
-/// \brief What became of the steps taken since the last reset. A step that produces a non-finite
-/// state (a diverging simulation, NaN inputs) is not taken: the state stays at the last finite
-/// one, `ok` turns false and stays false until reset(), and later steps do nothing.
+/// \brief What became of the steps taken since the last reset. A step that would produce a
+/// non-finite state (a diverging simulation), or whose inputs check_setpoints/check_disturbances
+/// refuse (a NaN, a non-unit setpoint quaternion), is not taken: the state stays at the last
+/// finite one, `ok` turns false and stays false until reset(), and later steps do nothing. The
+/// dynamics are never evaluated on such a state or input, so a debug build does not stop on its
+/// input assertions either.
 template <typename Scalar> struct SimulationStatus {
     bool ok = true;
     /// The step that failed, counted from 0 at the last reset (-1 while ok).
     Index failed_step = -1;
     /// The time the failed step started from.
     Scalar failed_time = Scalar(0);
+    /// The refused input and its arm when the step failed on its inputs (ok() otherwise).
+    InputCheck input{};
 };
 
 /// \brief Steps a cooperative Model at a fixed time step.
@@ -203,19 +209,28 @@ private:
 
     /// The derivative at a stage; `first_stage` marks the step's first evaluation (where a
     /// zero-order hold samples its inputs).
+    /// False, with status_.input set, when the inputs are refused (the dynamics are then not
+    /// evaluated).
     template <typename InputFunction>
-    Derivative derivative(Scalar time, const State& state, DataType& data, InputFunction& inputs, bool first_stage)
+    bool derivative(Scalar time, const State& state, DataType& data, InputFunction& inputs, bool first_stage,
+                    Derivative& result)
     {
         if (first_stage || input_hold_ == InputHold::per_stage) {
             call_inputs(inputs, time, state);
+            status_.input = check_setpoints(setpoints_);
+            if (status_.input.ok()) {
+                status_.input = check_disturbances(disturbances_);
+            }
+            if (!status_.input.ok()) {
+                return false;
+            }
         }
         interaction_dynamics(model_, data, state, setpoints_, disturbances_);
-        Derivative result;
         result.position = state.twist.template head<3>();
         result.orientation =
             quaternion_derivative_world(state.pose.orientation, state.twist.template tail<3>()).coeffs();
         result.twist = data.object_acceleration();
-        return result;
+        return true;
     }
 
     /// state + scale * derivative, with the quaternion renormalised so the dynamics are always
@@ -230,29 +245,29 @@ private:
         return result;
     }
 
-    /// One RK4 step; false (state_ partly updated) as soon as a stage state is not finite, so
-    /// the dynamics are never evaluated at a NaN state.
+    /// One RK4 step; false (state_ partly updated) as soon as a stage state is not finite or a
+    /// stage's inputs are refused, so the dynamics are never evaluated at a NaN state or input.
     template <typename InputFunction> bool step_runge_kutta_4(InputFunction& inputs)
     {
         const Scalar time = this->time();
         const Scalar dt = time_step_;
         const Scalar half = dt / Scalar(2);
-        const Derivative k1 = derivative(time, state_, data_, inputs, true);
+        Derivative k1, k2, k3, k4;
+        if (!derivative(time, state_, data_, inputs, true, k1)) {
+            return false;
+        }
         const State stage2 = advance(state_, k1, half);
-        if (!is_finite(stage2)) {
+        if (!is_finite(stage2) || !derivative(time + half, stage2, stage_data_, inputs, false, k2)) {
             return false;
         }
-        const Derivative k2 = derivative(time + half, stage2, stage_data_, inputs, false);
         const State stage3 = advance(state_, k2, half);
-        if (!is_finite(stage3)) {
+        if (!is_finite(stage3) || !derivative(time + half, stage3, stage_data_, inputs, false, k3)) {
             return false;
         }
-        const Derivative k3 = derivative(time + half, stage3, stage_data_, inputs, false);
         const State stage4 = advance(state_, k3, dt);
-        if (!is_finite(stage4)) {
+        if (!is_finite(stage4) || !derivative(time + dt, stage4, stage_data_, inputs, false, k4)) {
             return false;
         }
-        const Derivative k4 = derivative(time + dt, stage4, stage_data_, inputs, false);
         const Scalar sixth = dt / Scalar(6);
         state_.pose.position += sixth * (k1.position + Scalar(2) * (k2.position + k3.position) + k4.position);
         state_.pose.orientation.coeffs() +=
@@ -265,7 +280,10 @@ private:
     template <typename InputFunction> bool step_semi_implicit_euler(InputFunction& inputs)
     {
         const Scalar dt = time_step_;
-        const Derivative slope = derivative(time(), state_, data_, inputs, true);
+        Derivative slope;
+        if (!derivative(time(), state_, data_, inputs, true, slope)) {
+            return false;
+        }
         state_.twist += dt * slope.twist;
         state_.pose.position += dt * state_.twist.template head<3>();
         const Vector3<Scalar> rotation = dt * state_.twist.template tail<3>();
