@@ -1,0 +1,113 @@
+/// \file
+/// \brief Friction constraints of one flat contact (a palm on the object), Lin et al. L(17)-(19)
+/// with errata E9, as linear rows acting on the contact's wrench; docs/control.md.
+///
+/// Contact frame {c_i}: z is the object's inward surface normal at contact i, x and y tangential;
+/// R_ci rotates {c_i} to {w}. The wrench w_i = [f; t] the hand applies ON the object about the
+/// contact point, expressed in {c_i}, must satisfy
+///
+///     f_z >= f_min                                    unilateral, L(17) (f_min >= 0: a margin)
+///     c_k f_x + s_k f_y <= mu cos(pi/n) f_z           n-edge pyramid inscribed in the cone L(18),
+///                                                     (c_k, s_k) = (cos, sin) 2 pi (k + 1/2) / n
+///     |t_z| <= gamma f_z                              torsion, L(19)
+///     |t_x| <= delta_y f_z,  |t_y| <= delta_x f_z     centre of pressure in the 2 delta_x x 2 delta_y patch (E9)
+///
+/// n + 7 rows (15 for the paper's n = 8). The pyramid's edges lie on the cone |f_t| = mu f_z, at
+/// the angles 2 pi k / n; its facets are at mu cos(pi/n) f_z. Errata E9: the printed L(19) bounds
+/// the moment about x by the half-extent along x; a force f_z at the patch's edge y = delta_y
+/// gives t_x = delta_y f_z, so t_x is bounded by delta_y (and t_y by delta_x).
+#pragma once
+
+#include "coopdyn/config.hpp"
+#include "coopdyn/detail/validation.hpp"
+
+#include <cmath>
+
+namespace coopdyn {
+
+/// Rows of one contact's friction constraints: n + 7 (Dynamic passes through).
+constexpr int friction_rows(int edges) noexcept { return edges == Eigen::Dynamic ? Eigen::Dynamic : edges + 7; }
+
+/// \brief Friction parameters of one contact. Validated by validate(contact) (the controller model
+/// does it at construction).
+template <typename ScalarType> struct ContactFriction {
+    using Scalar = ScalarType;
+    Scalar friction_coefficient = Scalar(0.5);   ///< mu > 0, Coulomb
+    Scalar torsional_coefficient = Scalar(0);    ///< gamma >= 0 [m]: |t_z| <= gamma f_z
+    Scalar patch_half_length_x = Scalar(0.05);   ///< delta_x > 0 [m], patch along the contact's x
+    Scalar patch_half_length_y = Scalar(0.05);   ///< delta_y > 0 [m], patch along the contact's y
+    Scalar minimum_normal_force = Scalar(0);     ///< f_min >= 0 [N]
+    int pyramid_edges = 8;                       ///< n >= 3, the pyramid inscribed in the cone
+
+    /// Throws InvalidModel naming the parameter and the contact.
+    void validate(Index contact) const
+    {
+        const detail::ErrorContext context{detail::ErrorKind::model, "contact", contact};
+        detail::require_positive(friction_coefficient, context, "friction_coefficient");
+        detail::require_non_negative(torsional_coefficient, context, "torsional_coefficient");
+        detail::require_positive(patch_half_length_x, context, "patch_half_length_x");
+        detail::require_positive(patch_half_length_y, context, "patch_half_length_y");
+        detail::require_non_negative(minimum_normal_force, context, "minimum_normal_force");
+        if (pyramid_edges < 3) {
+            detail::fail(context, "pyramid_edges", "must be at least 3, got " + std::to_string(pyramid_edges));
+        }
+    }
+};
+
+/// \brief The rows A (n + 7 x 6) and bounds b of one contact's constraints A [f; t] <= b on its
+/// wrench in the contact frame {c_i}. Edges: n at compile time, or Dynamic to take
+/// friction.pyramid_edges (the outputs must then have n + 7 rows). noexcept; no allocation.
+/// Row order: unilateral, the n pyramid facets, torsion (+, -), centre of pressure (t_x +, -;
+/// t_y +, -).
+template <typename Scalar, typename DerivedRows, typename DerivedBounds>
+void contact_frame_friction_rows(const ContactFriction<Scalar>& friction, const Eigen::MatrixBase<DerivedRows>& rows_out,
+                                 const Eigen::MatrixBase<DerivedBounds>& bounds_out) noexcept
+{
+    using std::cos;
+    using std::sin;
+    auto& rows = const_cast<Eigen::MatrixBase<DerivedRows>&>(rows_out);
+    auto& bounds = const_cast<Eigen::MatrixBase<DerivedBounds>&>(bounds_out);
+    const int edges = friction.pyramid_edges;
+    COOPDYN_ASSERT(rows.rows() == edges + 7 && rows.cols() == 6 && bounds.size() == edges + 7,
+                   "friction rows: n + 7 rows of 6 columns");
+    rows.setZero();
+    bounds.setZero();
+    // f, t = columns 0-2, 3-5.
+    rows(0, 2) = Scalar(-1);  // -f_z <= -f_min
+    bounds(0) = -friction.minimum_normal_force;
+    const Scalar facet_reach = friction.friction_coefficient * cos(pi<Scalar>() / Scalar(edges));
+    for (int k = 0; k < edges; ++k) {
+        const Scalar angle = Scalar(2) * pi<Scalar>() * (Scalar(k) + Scalar(0.5)) / Scalar(edges);
+        rows(1 + k, 0) = cos(angle);
+        rows(1 + k, 1) = sin(angle);
+        rows(1 + k, 2) = -facet_reach;
+    }
+    const Index torsion = 1 + edges;
+    for (int sign = 0; sign < 2; ++sign) {
+        const Scalar s = sign == 0 ? Scalar(1) : Scalar(-1);
+        rows(torsion + sign, 5) = s;  // +-t_z - gamma f_z <= 0
+        rows(torsion + sign, 2) = -friction.torsional_coefficient;
+        rows(torsion + 2 + sign, 3) = s;  // +-t_x - delta_y f_z <= 0 (E9)
+        rows(torsion + 2 + sign, 2) = -friction.patch_half_length_y;
+        rows(torsion + 4 + sign, 4) = s;  // +-t_y - delta_x f_z <= 0 (E9)
+        rows(torsion + 4 + sign, 2) = -friction.patch_half_length_x;
+    }
+}
+
+/// \brief The same constraints acting on the contact's wrench in {w}: A_w = A blkdiag(R_ci^T, R_ci^T),
+/// so that A_w w_i <= b. contact_rotation is R_ci ({c_i} to {w}).
+template <typename Scalar, typename DerivedRows, typename DerivedBounds>
+void friction_rows(const ContactFriction<Scalar>& friction, const Matrix3<Scalar>& contact_rotation,
+                   const Eigen::MatrixBase<DerivedRows>& rows_out, const Eigen::MatrixBase<DerivedBounds>& bounds_out) noexcept
+{
+    auto& rows = const_cast<Eigen::MatrixBase<DerivedRows>&>(rows_out);
+    contact_frame_friction_rows(friction, rows, bounds_out);
+    for (Index row = 0; row < rows.rows(); ++row) {
+        const Vector3<Scalar> force = rows.row(row).template head<3>().transpose();
+        const Vector3<Scalar> moment = rows.row(row).template tail<3>().transpose();
+        rows.row(row).template head<3>() = (contact_rotation * force).transpose();
+        rows.row(row).template tail<3>() = (contact_rotation * moment).transpose();
+    }
+}
+
+}  // namespace coopdyn
