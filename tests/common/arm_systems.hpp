@@ -24,6 +24,14 @@ struct JointSpaceSystem {
     Index joints = 0;
 };
 
+/// The shapes the control tests sweep: K = 2, 3, 4 arms of 7 joints, with and without a shared
+/// torso joint.
+struct ArmCase {
+    Index arms;
+    bool torso;
+};
+inline constexpr ArmCase arm_cases[] = {{2, false}, {2, true}, {3, false}, {3, true}, {4, false}, {4, true}};
+
 /// Moore-Penrose pseudo-inverse by SVD, singular values below 1e-10 of the largest dropped.
 inline MatrixXd pseudo_inverse(const MatrixXd& matrix)
 {

@@ -76,11 +76,8 @@ Bias library_bias(const Dynamics& d, const JointSpaceSystem& s, const VectorXd& 
     return bias;
 }
 
-struct Case {
-    Index arms;
-    bool torso;
-};
-constexpr Case cases[] = {{2, false}, {2, true}, {3, false}, {3, true}, {4, false}, {4, true}};
+using Case = coopdyn_test::ArmCase;
+constexpr const auto& cases = coopdyn_test::arm_cases;
 
 TEST(ContactWrenches, BiasPlusSqueezeEqualsThePhysicalContactWrenches)
 {

@@ -58,11 +58,8 @@ LiteralProjection literal_projection(const JointSpaceSystem& s, const LiteralGra
     return result;
 }
 
-struct Case {
-    Index arms;
-    bool torso;
-};
-constexpr Case cases[] = {{2, false}, {2, true}, {3, false}, {3, true}, {4, false}, {4, true}};
+using Case = coopdyn_test::ArmCase;
+constexpr const auto& cases = coopdyn_test::arm_cases;
 
 TEST(ProjectedDynamics, KernelsMatchThePrintedFormulasWithPseudoInverses)
 {

@@ -132,8 +132,11 @@ template <typename DerivedR, typename DerivedJ>
 Eigen::Matrix<typename DerivedJ::Scalar, DerivedJ::RowsAtCompileTime, DerivedJ::ColsAtCompileTime>
 constraint_jacobian(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedJ>& J)
 {
+    const auto grasp = grasp_matrix(r);
+    const Eigen::Matrix<typename DerivedJ::Scalar, 6, DerivedJ::ColsAtCompileTime> jx =
+        detail::grasp_gram(grasp).llt().solve(grasp * J);
     Eigen::Matrix<typename DerivedJ::Scalar, DerivedJ::RowsAtCompileTime, DerivedJ::ColsAtCompileTime> result = J;
-    result.noalias() -= grasp_matrix(r).transpose() * object_jacobian(r, J);
+    result.noalias() -= grasp.transpose() * jx;
     return result;
 }
 
@@ -331,12 +334,7 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::compute(
                           "projected dynamics: inputs sized for another number of arms or joints");
     // Grasp geometry: G, Jx = (G G^T)^-1 G J, Jc = J - G^T Jx, B.
     contact_offsets = r;
-    for (Index i = 0; i < arms(); ++i) {
-        grasp.template block<3, 3>(0, 6 * i).setIdentity();
-        grasp.template block<3, 3>(0, 6 * i + 3).setZero();
-        grasp.template block<3, 3>(3, 6 * i) = skew(Vector3<Scalar>(r.col(i)));
-        grasp.template block<3, 3>(3, 6 * i + 3).setIdentity();
-    }
+    write_grasp_matrix(contact_offsets, grasp);
     grasp_gram_factor_.compute(detail::grasp_gram(grasp));
     object_jacobian.noalias() = grasp * J;
     grasp_gram_factor_.solveInPlace(object_jacobian);

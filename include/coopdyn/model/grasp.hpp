@@ -29,6 +29,21 @@ Vector6<typename DerivedT::Scalar> grasp_map_twist(const Eigen::MatrixBase<Deriv
     return Motion<typename DerivedT::Scalar>::from(object_twist).at_point(r_i).vector();
 }
 
+/// \brief G of (24) written into caller storage (6 x 6N, already sized): the allocation-free form
+/// of grasp_matrix for workspaces that rebuild G every tick.
+template <typename DerivedR, typename DerivedOut>
+void write_grasp_matrix(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedOut>& grasp_out) noexcept
+{
+    auto& grasp = const_cast<Eigen::MatrixBase<DerivedOut>&>(grasp_out);
+    COOPDYN_ASSERT(r.rows() == 3 && grasp.rows() == 6 && grasp.cols() == 6 * r.cols(), "G is 6 x 6N for r 3 x N");
+    grasp.setZero();
+    for (Index i = 0; i < r.cols(); ++i) {
+        grasp.template block<3, 3>(0, 6 * i).setIdentity();
+        grasp.template block<3, 3>(3, 6 * i) = skew(r.col(i).template head<3>());
+        grasp.template block<3, 3>(3, 6 * i + 3).setIdentity();
+    }
+}
+
 /// \brief Grasp matrix G = [G_1 ... G_N] of paper (24), 6 x 6N, with h_o = G hbar (23).
 /// \param r 3 x N grasp offsets in {w}.
 template <typename DerivedR>
@@ -39,14 +54,8 @@ grasp_matrix(const Eigen::MatrixBase<DerivedR>& r)
                   "r must be 3 x N");
     using Scalar = typename DerivedR::Scalar;
     COOPDYN_ASSERT(r.rows() == 3, "r must be 3 x N");
-    const Index arms = r.cols();
-    Eigen::Matrix<Scalar, 6, times_six(DerivedR::ColsAtCompileTime)> result(6, 6 * arms);
-    result.setZero();
-    for (Index i = 0; i < arms; ++i) {
-        result.template block<3, 3>(0, 6 * i).setIdentity();
-        result.template block<3, 3>(3, 6 * i) = skew(r.col(i).template head<3>());
-        result.template block<3, 3>(3, 6 * i + 3).setIdentity();
-    }
+    Eigen::Matrix<Scalar, 6, times_six(DerivedR::ColsAtCompileTime)> result(6, 6 * r.cols());
+    write_grasp_matrix(r, result);
     return result;
 }
 
