@@ -110,4 +110,48 @@ inline JointSpaceSystem random_joint_space_system(Index arms, bool torso, Rng& r
     return system;
 }
 
+/// The exact constrained motion of the arms holding a massless object with an external wrench on
+/// it, the contact wrenches as explicit unknowns (a physical model the controller's formulas were
+/// not derived from):
+///
+///     M qdd + h = tau + J^T f            (f: the wrenches the object applies to the hands)
+///     G (-f) + F_x = 0                   (the massless object is in balance)
+///     J qdd + Jdot qdot = G^T a_o + b    (each contact moves with the object; b_i = [w x (w x r_i); 0])
+///
+/// one square linear system in (qdd, f, a_o), solved densely. `applied` = -f, the hands' wrenches
+/// on the object; `residual` the relative residual of the solve.
+struct PhysicalSolution {
+    VectorXd qdd;
+    VectorXd applied;
+    Vector6d object_acceleration;
+    double residual = 0;
+};
+
+inline PhysicalSolution solve_physical_model(const JointSpaceSystem& s, const VectorXd& tau, const Vector6d& external)
+{
+    const Index q = s.joints;
+    const Index m = 6 * s.arms;
+    const MatrixXd G = literal_grasp_matrix(s.r);
+    // The object's angular velocity from the contacts' motion (qdot is on the manifold).
+    const Vector6d object_twist = (G * G.transpose()).inverse() * G * s.J * s.qdot;
+    const Vector3d omega = object_twist.tail<3>();
+    VectorXd centripetal = VectorXd::Zero(m);
+    for (Index i = 0; i < s.arms; ++i) {
+        centripetal.segment<3>(6 * i) = omega.cross(omega.cross(Vector3d(s.r.col(i))));
+    }
+    MatrixXd system = MatrixXd::Zero(q + m + 6, q + m + 6);
+    VectorXd rhs = VectorXd::Zero(q + m + 6);
+    system.block(0, 0, q, q) = s.M;
+    system.block(0, q, q, m) = -s.J.transpose();
+    rhs.head(q) = tau - s.h;
+    system.block(q, q, 6, m) = G;  // G f = F_x
+    rhs.segment<6>(q) = external;
+    system.block(q + 6, 0, m, q) = s.J;
+    system.block(q + 6, q + m, m, 6) = -G.transpose();
+    rhs.tail(m) = centripetal - s.Jdot * s.qdot;
+    const VectorXd solution = system.partialPivLu().solve(rhs);
+    return {solution.head(q), -solution.segment(q, m), solution.tail<6>(),
+            (system * solution - rhs).norm() / rhs.norm()};
+}
+
 }  // namespace coopdyn_test

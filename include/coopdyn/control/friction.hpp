@@ -21,12 +21,19 @@
 #include "coopdyn/config.hpp"
 #include "coopdyn/detail/validation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 
 namespace coopdyn {
 
 /// Rows of one contact's friction constraints: n + 7 (Dynamic passes through).
 constexpr int friction_rows(int edges) noexcept { return edges == Eigen::Dynamic ? Eigen::Dynamic : edges + 7; }
+
+/// The largest pyramid a contact may use (ContactFriction::validate): 64 edges approximate the
+/// cone to 0.12 % (cos(pi/64)), and the bound lets friction_margin work without the heap.
+inline constexpr int max_pyramid_edges = 64;
 
 /// \brief Friction parameters of one contact. Validated by validate(contact) (the controller model
 /// does it at construction).
@@ -48,8 +55,10 @@ template <typename ScalarType> struct ContactFriction {
         detail::require_positive(patch_half_length_x, context, "patch_half_length_x");
         detail::require_positive(patch_half_length_y, context, "patch_half_length_y");
         detail::require_non_negative(minimum_normal_force, context, "minimum_normal_force");
-        if (pyramid_edges < 3) {
-            detail::fail(context, "pyramid_edges", "must be at least 3, got " + std::to_string(pyramid_edges));
+        if (pyramid_edges < 3 || pyramid_edges > max_pyramid_edges) {
+            detail::fail(context, "pyramid_edges",
+                         "must be between 3 and " + std::to_string(max_pyramid_edges) + ", got " +
+                             std::to_string(pyramid_edges));
         }
     }
 };
@@ -108,6 +117,31 @@ void friction_rows(const ContactFriction<Scalar>& friction, const Matrix3<Scalar
         rows.row(row).template head<3>() = (contact_rotation * force).transpose();
         rows.row(row).template tail<3>() = (contact_rotation * moment).transpose();
     }
+}
+
+/// \brief The friction margin of one contact: the smallest slack of its rows, each divided by the
+/// row's norm, min_k (b_k - a_k^T w) / |a_k|, for the wrench w = [f; t] in the contact frame {c_i}.
+/// It is the distance from w to the nearest constraint boundary (in newtons for the force rows,
+/// newton-metres for the moment rows): positive inside, zero on the boundary, negative when a
+/// constraint is violated (the grasp would slip, twist or roll there). noexcept; no allocation
+/// (friction.pyramid_edges <= max_pyramid_edges).
+template <typename Scalar, typename DerivedWrench>
+Scalar friction_margin(const ContactFriction<Scalar>& friction, const Eigen::MatrixBase<DerivedWrench>& wrench) noexcept
+{
+    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedWrench, 6);
+    constexpr int most_rows = friction_rows(max_pyramid_edges);
+    COOPDYN_ASSERT(friction.pyramid_edges >= 3 && friction.pyramid_edges <= max_pyramid_edges,
+                   "friction_margin: pyramid_edges out of range");
+    const Index count = friction_rows(friction.pyramid_edges);
+    Eigen::Matrix<Scalar, Eigen::Dynamic, 6, 0, most_rows, 6> rows(count, 6);
+    Eigen::Matrix<Scalar, Eigen::Dynamic, 1, 0, most_rows, 1> bounds(count);
+    contact_frame_friction_rows(friction, rows, bounds);
+    const Vector6<Scalar> w = wrench;
+    Scalar margin = std::numeric_limits<Scalar>::infinity();
+    for (Index k = 0; k < count; ++k) {
+        margin = std::min(margin, (bounds(k) - rows.row(k).dot(w)) / rows.row(k).norm());
+    }
+    return margin;
 }
 
 }  // namespace coopdyn

@@ -215,4 +215,40 @@ void require_unit_quaternion(const Quaternion<Scalar>& quaternion, const ErrorCo
 }
 
 }  // namespace detail
+
+/// |norm - 1| a per-tick quaternion may have: 1e-6, or 100 ulps for float.
+template <typename Scalar> double unit_quaternion_tolerance() noexcept
+{
+    return std::max(1e-6, 100.0 * detail::epsilon_of<Scalar>());
+}
+
+namespace detail {
+/// Every entry finite (on the values of autodiff scalars); allocation-free.
+template <typename Derived> bool all_finite(const Eigen::MatrixBase<Derived>& matrix) noexcept
+{
+    for (Index column = 0; column < matrix.cols(); ++column) {
+        for (Index row = 0; row < matrix.rows(); ++row) {
+            if (!std::isfinite(value_of(matrix(row, column)))) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+/// Finite and of unit norm within unit_quaternion_tolerance; `coefficients` in any order.
+template <typename Derived> bool is_unit_quaternion(const Eigen::MatrixBase<Derived>& coefficients) noexcept
+{
+    using Scalar = typename Derived::Scalar;
+    if (!all_finite(coefficients)) {
+        return false;
+    }
+    double squared_norm = 0.0;
+    for (Index k = 0; k < 4; ++k) {
+        const double value = value_of(coefficients(k));
+        squared_norm += value * value;
+    }
+    return std::abs(std::sqrt(squared_norm) - 1.0) <= unit_quaternion_tolerance<Scalar>();
+}
+}  // namespace detail
 }  // namespace coopdyn

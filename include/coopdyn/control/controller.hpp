@@ -1,0 +1,452 @@
+/// \file
+/// \brief The projected inverse-dynamics controller of K arms holding an object (Lin et al.),
+/// per tick: the impedance law L(16), the external-wrench estimate L(7), the contact-wrench bias
+/// L(23)-(24) with errata E11, the contact QP L(20)-(25) in the internal-wrench coordinates z
+/// (errata E10) with a least-violating fallback, and a posture torque for the arms' self-motion
+/// (errata E12). docs/control.md, "The controller".
+///
+///     tau = tau_u + tau_c + tau_n
+///     tau_u = P Jx^T F,   F = hc + Lambda_c xdd_d - D_d xtilde_dot - K_d xtilde            L(16)
+///     F_x = Lambda_c xtilde_dd + D_d xtilde_dot + K_d xtilde                               L(7)
+///     tau_c = J^T B z*,   z* = argmin objective(z) s.t. friction rows on w_0 + B z        L(20)-(25)
+///     tau_n = (I - J^T (J M^-1 J^T)^-1 J M^-1) (h - K_n (q - q_n) - D_n qdot)            E12
+///
+/// xtilde = [p - p_d; 2 d_eta d_eps] with dq = q (x) q_d^-1 ((5): sin(theta) u, the first paper's
+/// stiffness torque per unit stiffness), so the rotational stiffness is in N m/rad near the goal.
+#pragma once
+
+#include "coopdyn/config.hpp"
+#include "coopdyn/control/contact_wrenches.hpp"
+#include "coopdyn/control/controller_model.hpp"
+#include "coopdyn/control/projected_dynamics.hpp"
+#include "coopdyn/control/qp_solver.hpp"
+#include "coopdyn/detail/validation.hpp"
+#include "coopdyn/spatial/quaternion.hpp"
+
+#include <limits>
+
+namespace coopdyn {
+
+/// \brief Outcome of a controller tick (ControllerData::status). Whatever the status, the torques
+/// are finite.
+enum class ControlStatus {
+    /// Every step succeeded; the predicted contact wrenches satisfy every friction row.
+    ok,
+    /// No squeeze satisfies every friction row (the load cannot be held by friction as modelled):
+    /// the fallback's least-violating squeeze is applied and ControllerData::fallback_violation
+    /// says by how much the worst row is violated. The grasp may slip.
+    friction_infeasible,
+    /// The contact QP stopped at its iteration cap (or its Hessian was not positive definite): the
+    /// fallback's squeeze is applied (or none if that failed too). Rare; see qp_status.
+    qp_failed,
+    /// The arms are at a singular configuration (J lost rank, or the object cannot be moved in
+    /// some direction): no torques can be computed; the torque is h (the arms' bias compensated,
+    /// no squeeze). ControllerData::dynamics.status says which projection failed.
+    singular,
+    /// An input is not finite, a quaternion is not unit, or M is not positive definite
+    /// (ControllerData::input_problem names it): the torque is zero.
+    invalid_input,
+};
+
+/// The enumerator's name.
+inline const char* to_string(ControlStatus status) noexcept
+{
+    switch (status) {
+    case ControlStatus::ok: return "ok";
+    case ControlStatus::friction_infeasible: return "friction_infeasible";
+    case ControlStatus::qp_failed: return "qp_failed";
+    case ControlStatus::singular: return "singular";
+    case ControlStatus::invalid_input: return "invalid_input";
+    }
+    return "unknown";
+}
+
+/// \brief Everything a controller tick computes (outputs first) and the buffers it needs, sized
+/// once from the model: controller_tick allocates nothing (fixed sizes, and Dynamic ones after
+/// construction).
+template <typename ScalarType, int ArmsAtCompileTime = Eigen::Dynamic, int JointsAtCompileTime = Eigen::Dynamic,
+          int EdgesAtCompileTime = 8>
+struct ControllerData {
+    using Scalar = ScalarType;
+    using Model = ControllerModel<Scalar, ArmsAtCompileTime, JointsAtCompileTime, EdgesAtCompileTime>;
+    static constexpr int Arms = Model::Arms;
+    static constexpr int Joints = Model::Joints;
+    static constexpr int Stack = Model::Stack;
+    static constexpr int Internal = Model::Internal;
+    static constexpr int Rows = Model::Rows;
+    using JointVector = Eigen::Matrix<Scalar, Joints, 1>;
+    using JointMatrix = Eigen::Matrix<Scalar, Joints, Joints>;
+    using StackVector = Eigen::Matrix<Scalar, Stack, 1>;
+    using InternalVector = Eigen::Matrix<Scalar, Internal, 1>;
+    using InternalMatrix = Eigen::Matrix<Scalar, Internal, Internal>;
+    using ArmVector = Eigen::Matrix<Scalar, Arms, 1>;
+
+    explicit ControllerData(const Model& model);
+
+    Index arms() const noexcept { return contact_offsets.cols(); }
+    Index joints() const noexcept { return torque.size(); }
+
+    // ---- outputs of the last tick -------------------------------------------------------------
+    ControlStatus status = ControlStatus::ok;
+    const char* input_problem = "none";  ///< the refused input when status is invalid_input
+    JointVector torque;                  ///< tau = tau_u + tau_c + tau_n, what to send to the arms
+    JointVector motion_torque;           ///< tau_u = P Jx^T F, L(16)
+    JointVector squeeze_torque;          ///< tau_c = J^T B z*
+    JointVector posture_torque;          ///< tau_n (E12)
+    Vector6<Scalar> pose_error;          ///< xtilde = [p - p_d; 2 d_eta d_eps]
+    Vector6<Scalar> twist_error;         ///< xtilde_dot = xdot - xdot_d
+    Vector6<Scalar> motion_wrench;       ///< F of L(16), on the object at its centre, {w}
+    Vector6<Scalar> external_wrench;     ///< F_x of L(7), on the object at its centre, {w}
+    StackVector contact_wrench_bias;     ///< w_0 = -G^+ F_x - eta (E11), the wrenches without squeeze
+    StackVector contact_wrenches;        ///< w = w_0 + B z*: hand i on the object, about contact i, {w}
+    /// Column i: contact i's predicted wrench [f; t] in its contact frame {c_i}: f_z is the normal
+    /// force, (f_x, f_y) the tangential force, t the moments about the contact point.
+    Eigen::Matrix<Scalar, 6, Arms> contact_frame_wrenches;
+    ArmVector friction_margins;          ///< per contact, friction_margin of its predicted wrench
+    Scalar tightest_margin = Scalar(0);  ///< the smallest of friction_margins (< 0: a row is violated)
+    Index tightest_contact = 0;          ///< the contact it belongs to
+    InternalVector squeeze;              ///< z*, the internal-wrench coordinates (N, N m; B orthonormal)
+    QpStatus qp_status = QpStatus::solved;  ///< of the contact QP proper
+    int qp_iterations = 0;               ///< its steps (plus the fallback's when it ran)
+    bool fallback_used = false;          ///< the least-violating fallback supplied z*
+    Scalar fallback_violation = Scalar(0);  ///< s, the worst row's violation under the fallback (>= 0)
+    /// qdd under tau_u + tau_c (tau_c changes none) with the estimated F_x; the posture torque adds
+    /// the self-motion M^-1 tau_n, which moves neither the object nor the contacts.
+    JointVector joint_acceleration;
+    Eigen::Matrix<Scalar, 3, Arms> contact_offsets;        ///< r_i = R_o p_i, {w}
+    Eigen::Matrix<Scalar, 3, times_three(Arms)> contact_rotations;  ///< [R_c1 ... R_cK], {c_i} to {w}
+    ProjectedDynamics<Scalar, Arms, Joints> dynamics;      ///< P, Jx, Lambda_c, hc, B, ... of this tick
+
+    // ---- workspace -----------------------------------------------------------------------------
+    Eigen::LLT<JointMatrix> inertia_factor;                ///< M = L L^T
+    Eigen::Matrix<Scalar, Joints, Stack> whitened_jacobian;  ///< L^-1 J^T
+    Eigen::Matrix<Scalar, Stack, Stack> contact_gram;      ///< J M^-1 J^T
+    Eigen::LLT<Eigen::Matrix<Scalar, Stack, Stack>> contact_gram_factor;
+    Eigen::Matrix<Scalar, Joints, Internal> jacobian_basis;  ///< J^T B
+    Eigen::Matrix<Scalar, Rows, 6> world_rows;             ///< friction rows acting on {w} wrenches
+    InternalMatrix hessian;
+    InternalVector gradient;
+    Eigen::Matrix<Scalar, Rows, Internal> constraints;
+    Eigen::Matrix<Scalar, Rows, 1> bounds;
+    QpSolver<Scalar, Internal, Rows> qp;
+    Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)> fallback_hessian;
+    Eigen::Matrix<Scalar, plus_one(Internal), 1> fallback_gradient;
+    Eigen::Matrix<Scalar, plus_one(Rows), plus_one(Internal)> fallback_constraints;
+    Eigen::Matrix<Scalar, plus_one(Rows), 1> fallback_bounds;
+    QpSolver<Scalar, plus_one(Internal), plus_one(Rows)> fallback_qp;
+    JointVector joint_scratch;
+    StackVector stack_scratch;
+    bool warm = false;  ///< the QP solved last tick (its active set starts this one)
+};
+
+template <typename Scalar, int Arms, int Joints, int Edges>
+ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
+    : torque(JointVector::Zero(model.joints())),
+      motion_torque(JointVector::Zero(model.joints())),
+      squeeze_torque(JointVector::Zero(model.joints())),
+      posture_torque(JointVector::Zero(model.joints())),
+      pose_error(Vector6<Scalar>::Zero()),
+      twist_error(Vector6<Scalar>::Zero()),
+      motion_wrench(Vector6<Scalar>::Zero()),
+      external_wrench(Vector6<Scalar>::Zero()),
+      contact_wrench_bias(StackVector::Zero(6 * model.arms())),
+      contact_wrenches(StackVector::Zero(6 * model.arms())),
+      contact_frame_wrenches(Eigen::Matrix<Scalar, 6, Arms>::Zero(6, model.arms())),
+      friction_margins(ArmVector::Zero(model.arms())),
+      squeeze(InternalVector::Zero(6 * (model.arms() - 1))),
+      joint_acceleration(JointVector::Zero(model.joints())),
+      contact_offsets(Eigen::Matrix<Scalar, 3, Arms>::Zero(3, model.arms())),
+      contact_rotations(Eigen::Matrix<Scalar, 3, times_three(Arms)>::Zero(3, 3 * model.arms())),
+      dynamics(model.arms(), model.joints()),
+      inertia_factor(model.joints()),
+      whitened_jacobian(Eigen::Matrix<Scalar, Joints, Stack>::Zero(model.joints(), 6 * model.arms())),
+      contact_gram(Eigen::Matrix<Scalar, Stack, Stack>::Zero(6 * model.arms(), 6 * model.arms())),
+      contact_gram_factor(6 * model.arms()),
+      jacobian_basis(Eigen::Matrix<Scalar, Joints, Internal>::Zero(model.joints(), 6 * (model.arms() - 1))),
+      world_rows(Eigen::Matrix<Scalar, Rows, 6>::Zero(model.rows(), 6)),
+      hessian(InternalMatrix::Zero(6 * (model.arms() - 1), 6 * (model.arms() - 1))),
+      gradient(InternalVector::Zero(6 * (model.arms() - 1))),
+      constraints(Eigen::Matrix<Scalar, Rows, Internal>::Zero(model.rows(), 6 * (model.arms() - 1))),
+      bounds(Eigen::Matrix<Scalar, Rows, 1>::Zero(model.rows())),
+      qp(6 * (model.arms() - 1), model.rows()),
+      fallback_hessian(Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)>::Zero(6 * model.arms() - 5,
+                                                                                           6 * model.arms() - 5)),
+      fallback_gradient(Eigen::Matrix<Scalar, plus_one(Internal), 1>::Zero(6 * model.arms() - 5)),
+      fallback_constraints(
+          Eigen::Matrix<Scalar, plus_one(Rows), plus_one(Internal)>::Zero(model.rows() + 1, 6 * model.arms() - 5)),
+      fallback_bounds(Eigen::Matrix<Scalar, plus_one(Rows), 1>::Zero(model.rows() + 1)),
+      fallback_qp(6 * model.arms() - 5, model.rows() + 1),
+      joint_scratch(JointVector::Zero(model.joints())),
+      stack_scratch(StackVector::Zero(6 * model.arms()))
+{
+    if (model.qp_options().iteration_limit > 0) {
+        qp.set_iteration_limit(model.qp_options().iteration_limit);
+        fallback_qp.set_iteration_limit(model.qp_options().iteration_limit);
+    }
+}
+
+namespace detail {
+
+/// The first per-tick input that is not finite (or a quaternion that is not unit), by name; "none".
+template <typename Scalar, int Arms, int Joints>
+const char* controller_input_problem(const ControllerInput<Scalar, Arms, Joints>& input) noexcept
+{
+    if (!all_finite(input.inertia)) return "inertia (not finite)";
+    if (!all_finite(input.bias)) return "bias (not finite)";
+    if (!all_finite(input.jacobian)) return "jacobian (not finite)";
+    if (!all_finite(input.jacobian_rate_qdot)) return "jacobian_rate_qdot (not finite)";
+    if (!all_finite(input.positions)) return "positions (not finite)";
+    if (!all_finite(input.velocities)) return "velocities (not finite)";
+    if (!all_finite(input.object.pose.position)) return "object.pose.position (not finite)";
+    if (!is_unit_quaternion(input.object.pose.orientation.coeffs())) return "object.pose.orientation (not unit)";
+    if (!all_finite(input.object.twist)) return "object.twist (not finite)";
+    if (!all_finite(input.object_acceleration)) return "object_acceleration (not finite)";
+    if (!all_finite(input.desired_pose.position)) return "desired_pose.position (not finite)";
+    if (!is_unit_quaternion(input.desired_pose.orientation.coeffs())) return "desired_pose.orientation (not unit)";
+    if (!all_finite(input.desired_twist)) return "desired_twist (not finite)";
+    if (!all_finite(input.desired_acceleration)) return "desired_acceleration (not finite)";
+    if (!all_finite(input.posture)) return "posture (not finite)";
+    return "none";
+}
+
+/// The grasp in {w} from the object's orientation: r_i = R_o p_i, R_ci = R_o R_i, and the
+/// friction rows acting on {w} wrenches, A_w = A blkdiag(R_ci^T, R_ci^T).
+template <typename Model, typename Data>
+void controller_grasp(const Model& model, Data& data, const Matrix3<typename Model::Scalar>& object_rotation) noexcept
+{
+    using Scalar = typename Model::Scalar;
+    for (Index i = 0; i < model.arms(); ++i) {
+        data.contact_offsets.col(i).noalias() = object_rotation * model.contact(i).frame.position;
+        const Matrix3<Scalar> rotation = object_rotation * model.contact_rotation(i);
+        data.contact_rotations.template middleCols<3>(3 * i) = rotation;
+        const auto rows = model.contact_frame_rows().middleRows(model.row_offset(i), model.row_count(i));
+        auto world = data.world_rows.middleRows(model.row_offset(i), model.row_count(i));
+        world.template leftCols<3>().noalias() = rows.template leftCols<3>() * rotation.transpose();
+        world.template rightCols<3>().noalias() = rows.template rightCols<3>() * rotation.transpose();
+    }
+}
+
+/// L(16) and L(7): the pose and twist errors, F, tau_u = P Jx^T F and the estimate F_x.
+template <typename Model, typename Data, typename Input>
+void controller_impedance(const Model& model, Data& data, const Input& input) noexcept
+{
+    using Scalar = typename Model::Scalar;
+    const auto& dynamics = data.dynamics;
+    data.pose_error.template head<3>() = input.object.pose.position - input.desired_pose.position;
+    data.pose_error.template tail<3>() = rotational_stiffness_torque(
+        orientation_error(input.object.pose.orientation, input.desired_pose.orientation), Scalar(1));
+    data.twist_error = input.object.twist - input.desired_twist;
+    const Vector6<Scalar> spring_damper = model.damping() * data.twist_error + model.stiffness() * data.pose_error;
+    data.motion_wrench = dynamics.task_bias + dynamics.task_inertia * input.desired_acceleration - spring_damper;
+    data.joint_scratch.noalias() = dynamics.object_jacobian.transpose() * data.motion_wrench;
+    data.motion_torque.noalias() = dynamics.projector * data.joint_scratch;
+    data.external_wrench = dynamics.task_inertia * (input.object_acceleration - input.desired_acceleration) + spring_damper;
+}
+
+/// The contact QP in z (L(20)-(25), E10): rows C = A_w B_i, bounds d = b - A_w w_0,i per contact,
+/// and the objective's H and g (SqueezeObjective).
+template <typename Model, typename Data, typename Input>
+void controller_contact_qp(const Model& model, Data& data, const Input& input) noexcept
+{
+    using Scalar = typename Model::Scalar;
+    const auto& basis = data.dynamics.internal_basis;
+    const SqueezeObjective<Scalar>& objective = model.objective();
+    data.jacobian_basis.noalias() = input.jacobian.transpose() * basis;
+    data.hessian.noalias() = objective.torque_weight * data.jacobian_basis.transpose() * data.jacobian_basis;
+    data.hessian.diagonal().array() += objective.squeeze_weight;
+    data.gradient.setZero();
+    for (Index i = 0; i < model.arms(); ++i) {
+        const auto moment_rows = basis.template middleRows<3>(6 * i + 3);
+        data.hessian.noalias() += objective.moment_weight * moment_rows.transpose() * moment_rows;
+        data.gradient.noalias() +=
+            objective.moment_weight * moment_rows.transpose() * data.contact_wrench_bias.template segment<3>(6 * i + 3);
+        const auto world = data.world_rows.middleRows(model.row_offset(i), model.row_count(i));
+        data.constraints.middleRows(model.row_offset(i), model.row_count(i)).noalias() =
+            world * basis.template middleRows<6>(6 * i);
+        data.bounds.segment(model.row_offset(i), model.row_count(i)) =
+            model.contact_frame_bounds().segment(model.row_offset(i), model.row_count(i));
+        data.bounds.segment(model.row_offset(i), model.row_count(i)).noalias() -=
+            world * data.contact_wrench_bias.template segment<6>(6 * i);
+    }
+}
+
+/// The least-violating squeeze: min objective + rho s^2 s.t. C z - |a_k| s <= d, -s <= 0, with
+/// rho = fallback_weight max_k H_kk. Always feasible (a large s satisfies every row). Returns
+/// whether it solved; writes z into data.squeeze and s into data.fallback_violation.
+template <typename Model, typename Data> bool controller_fallback(const Model& model, Data& data) noexcept
+{
+    using Scalar = typename Model::Scalar;
+    const Index n = data.hessian.rows();
+    const Index m = data.bounds.size();
+    data.fallback_hessian.setZero();
+    data.fallback_hessian.topLeftCorner(n, n) = data.hessian;
+    data.fallback_hessian(n, n) = model.qp_options().fallback_weight * data.hessian.diagonal().maxCoeff();
+    data.fallback_gradient.head(n) = data.gradient;
+    data.fallback_gradient(n) = Scalar(0);
+    data.fallback_constraints.topLeftCorner(m, n) = data.constraints;
+    data.fallback_constraints.col(n).head(m) = -model.row_norms();
+    data.fallback_constraints.row(m).setZero();
+    data.fallback_constraints(m, n) = Scalar(-1);
+    data.fallback_bounds.head(m) = data.bounds;
+    data.fallback_bounds(m) = Scalar(0);
+    const auto& result =
+        data.fallback_qp.solve(data.fallback_hessian, data.fallback_gradient, data.fallback_constraints, data.fallback_bounds);
+    data.qp_iterations += result.iterations;
+    if (result.status != QpStatus::solved) {
+        return false;
+    }
+    data.squeeze = result.x.head(n);
+    data.fallback_violation = result.x(n);
+    return true;
+}
+
+/// Solves the contact QP (warm from last tick's active set when allowed), falling back to the
+/// least-violating squeeze when it has no solution; sets data.status.
+template <typename Model, typename Data> void controller_solve_squeeze(const Model& model, Data& data) noexcept
+{
+    using Scalar = typename Model::Scalar;
+    const bool warm = data.warm && model.qp_options().warm_start;
+    const auto& result = warm ? data.qp.solve_warm(data.hessian, data.gradient, data.constraints, data.bounds)
+                              : data.qp.solve(data.hessian, data.gradient, data.constraints, data.bounds);
+    data.qp_status = result.status;
+    data.qp_iterations = result.iterations;
+    data.fallback_used = false;
+    data.fallback_violation = Scalar(0);
+    data.warm = result.status == QpStatus::solved;
+    if (data.warm) {
+        data.squeeze = result.x;
+        data.status = ControlStatus::ok;
+        return;
+    }
+    data.status = result.status == QpStatus::infeasible ? ControlStatus::friction_infeasible : ControlStatus::qp_failed;
+    data.fallback_used = controller_fallback(model, data);
+    if (!data.fallback_used) {
+        data.squeeze.setZero();
+        data.status = ControlStatus::qp_failed;
+    }
+}
+
+/// tau_c = J^T B z, w = w_0 + B z, each contact's wrench in its frame, and the friction margins
+/// (the rows' slacks d - C z = b - A_w w, over the rows' norms).
+template <typename Model, typename Data> void controller_contact_outputs(const Model& model, Data& data) noexcept
+{
+    using Scalar = typename Model::Scalar;
+    data.squeeze_torque.noalias() = data.jacobian_basis * data.squeeze;
+    data.contact_wrenches = data.contact_wrench_bias;
+    data.contact_wrenches.noalias() += data.dynamics.internal_basis * data.squeeze;
+    data.tightest_margin = std::numeric_limits<Scalar>::infinity();
+    for (Index i = 0; i < model.arms(); ++i) {
+        const Matrix3<Scalar> rotation = data.contact_rotations.template middleCols<3>(3 * i);
+        data.contact_frame_wrenches.col(i).template head<3>().noalias() =
+            rotation.transpose() * data.contact_wrenches.template segment<3>(6 * i);
+        data.contact_frame_wrenches.col(i).template tail<3>().noalias() =
+            rotation.transpose() * data.contact_wrenches.template segment<3>(6 * i + 3);
+        Scalar margin = std::numeric_limits<Scalar>::infinity();
+        for (Index k = model.row_offset(i); k < model.row_offset(i) + model.row_count(i); ++k) {
+            const Scalar slack = data.bounds(k) - data.constraints.row(k).dot(data.squeeze);
+            margin = std::min(margin, slack / model.row_norms()(k));
+        }
+        data.friction_margins(i) = margin;
+        if (margin < data.tightest_margin) {
+            data.tightest_margin = margin;
+            data.tightest_contact = i;
+        }
+    }
+}
+
+/// E12: tau_n = N^T tau_0 with tau_0 = h - K_n (q - q_n) - D_n qdot and the dynamically consistent
+/// projector N^T = I - J^T (J M^-1 J^T)^-1 J M^-1: J M^-1 tau_n = 0, so tau_n accelerates no
+/// contact point; since [Jx; Jc] and J have the same row space, it moves neither the object nor
+/// the grasp and leaves every contact wrench as it is. The h term compensates the self-motion's
+/// own gravity and Coriolis forces, which tau_u and tau_c do not reach. False if J M^-1 J^T is
+/// singular. Needs data.inertia_factor.
+template <typename Model, typename Data, typename Input>
+bool controller_posture(const Model& model, Data& data, const Input& input) noexcept
+{
+    auto& tau_n = data.posture_torque;
+    tau_n = input.bias;
+    tau_n.array() -= model.posture_stiffness().array() * (input.positions - input.posture).array() +
+                     model.posture_damping().array() * input.velocities.array();
+    data.whitened_jacobian = input.jacobian.transpose();
+    data.inertia_factor.matrixL().solveInPlace(data.whitened_jacobian);  // L^-1 J^T
+    data.contact_gram.noalias() = data.whitened_jacobian.transpose() * data.whitened_jacobian;
+    data.contact_gram_factor.compute(data.contact_gram);
+    if (!regular_cholesky(data.contact_gram_factor)) {
+        return false;
+    }
+    data.joint_scratch = tau_n;
+    data.inertia_factor.solveInPlace(data.joint_scratch);  // M^-1 tau_0
+    data.stack_scratch.noalias() = input.jacobian * data.joint_scratch;
+    data.contact_gram_factor.solveInPlace(data.stack_scratch);
+    tau_n.noalias() -= input.jacobian.transpose() * data.stack_scratch;
+    return true;
+}
+
+/// Every output set for a tick that computes no control: `torque` (zero or h), nothing else.
+template <typename Data, typename Torque>
+void controller_no_control(Data& data, ControlStatus status, const Torque& torque) noexcept
+{
+    data.status = status;
+    data.torque = torque;
+    data.motion_torque.setZero();
+    data.squeeze_torque.setZero();
+    data.posture_torque.setZero();
+    data.squeeze.setZero();
+    data.contact_wrenches.setZero();
+    data.contact_frame_wrenches.setZero();
+    data.friction_margins.setZero();
+    data.tightest_margin = typename Data::Scalar(0);
+    data.fallback_used = false;
+    data.warm = false;
+}
+
+}  // namespace detail
+
+/// \brief One controller tick: fills `data` from `input` and returns the joint torques
+/// tau = tau_u + tau_c + tau_n (data.torque). noexcept; allocates nothing. Check data.status: the
+/// torques are finite whatever it is (zero for an invalid input, h at a singular configuration,
+/// the least-violating squeeze when friction cannot hold the load).
+template <typename Scalar, int Arms, int Joints, int Edges>
+const typename ControllerData<Scalar, Arms, Joints, Edges>::JointVector&
+controller_tick(const ControllerModel<Scalar, Arms, Joints, Edges>& model, ControllerData<Scalar, Arms, Joints, Edges>& data,
+                const ControllerInput<Scalar, Arms, Joints>& input) noexcept
+{
+    COOPDYN_REQUIRE_SHAPE(data.arms() == model.arms() && data.joints() == model.joints() &&
+                              input.jacobian.rows() == 6 * model.arms() && input.inertia.rows() == model.joints() &&
+                              input.inertia.cols() == model.joints() && input.bias.size() == model.joints() &&
+                              input.jacobian.cols() == model.joints() && input.positions.size() == model.joints() &&
+                              input.velocities.size() == model.joints() && input.posture.size() == model.joints() &&
+                              input.jacobian_rate_qdot.size() == 6 * model.arms(),
+                          "controller_tick: data or input sized for another controller model");
+    data.input_problem = detail::controller_input_problem(input);
+    if (data.input_problem[0] != 'n') {
+        detail::controller_no_control(data, ControlStatus::invalid_input, Eigen::Matrix<Scalar, Joints, 1>::Zero(model.joints()));
+        return data.torque;
+    }
+    data.inertia_factor.compute(input.inertia);
+    if (!detail::regular_cholesky(data.inertia_factor)) {
+        data.input_problem = "inertia (not positive definite)";
+        detail::controller_no_control(data, ControlStatus::invalid_input, Eigen::Matrix<Scalar, Joints, 1>::Zero(model.joints()));
+        return data.torque;
+    }
+    detail::controller_grasp(model, data, input.object.pose.orientation.toRotationMatrix());
+    if (data.dynamics.compute(input.inertia, input.bias, input.jacobian, input.jacobian_rate_qdot, input.velocities,
+                              data.contact_offsets) != ProjectionStatus::ok) {
+        detail::controller_no_control(data, ControlStatus::singular, input.bias);
+        return data.torque;
+    }
+    detail::controller_impedance(model, data, input);
+    contact_wrench_bias(data.dynamics, input.inertia, input.bias, data.motion_torque, data.external_wrench,
+                        data.joint_acceleration, data.contact_wrench_bias, data.joint_scratch);
+    detail::controller_contact_qp(model, data, input);
+    detail::controller_solve_squeeze(model, data);
+    detail::controller_contact_outputs(model, data);
+    if (!detail::controller_posture(model, data, input)) {
+        detail::controller_no_control(data, ControlStatus::singular, input.bias);
+        return data.torque;
+    }
+    data.torque = data.motion_torque + data.squeeze_torque + data.posture_torque;
+    return data.torque;
+}
+
+}  // namespace coopdyn

@@ -1,0 +1,302 @@
+/// \file
+/// \brief The constant part of the projected inverse-dynamics controller of K arms holding an
+/// object through flat contacts (Lin et al.): the grasp, each contact's friction, the desired
+/// impedance, the posture gains, the squeeze objective and the QP's options, validated once at
+/// construction; and the per-tick input. docs/control.md, "The controller".
+///
+/// Use:
+///
+///     coopdyn::ControllerParameters<double> parameters;
+///     parameters.joints = 14;
+///     parameters.contacts = {left_palm, right_palm};         // ContactPoint: frame in the object, friction
+///     parameters.stiffness = ...; parameters.damping = ...;  // K_d, D_d (6 x 6)
+///     parameters.posture_stiffness = Eigen::VectorXd::Constant(14, 20.0);
+///     parameters.posture_damping = Eigen::VectorXd::Constant(14, 5.0);
+///     coopdyn::ControllerModel<double, 2, 14> model(parameters);   // throws InvalidModel, naming what
+///     coopdyn::ControllerData<double, 2, 14> data(model);          // controller.hpp
+///     coopdyn::ControllerInput<double, 2, 14> input(model);        // fill M, h, J, ... every tick
+///     const auto& tau = coopdyn::controller_tick(model, data, input);
+#pragma once
+
+#include "coopdyn/config.hpp"
+#include "coopdyn/control/friction.hpp"
+#include "coopdyn/control/projected_dynamics.hpp"
+#include "coopdyn/detail/validation.hpp"
+#include "coopdyn/errors.hpp"
+#include "coopdyn/spatial/pose.hpp"
+
+#include <string>
+#include <vector>
+
+namespace coopdyn {
+
+/// \brief One contact of a hand (a palm) on the object.
+template <typename ScalarType> struct ContactPoint {
+    using Scalar = ScalarType;
+    /// The contact frame {c_i} in the object's body frame: its position is the contact point
+    /// relative to the object's centre, its z axis the object's inward surface normal there, x and y
+    /// tangential (the patch's axes). Fixed while the grasp holds: r_i = R_o position,
+    /// R_ci = R_o R(orientation) in {w}.
+    Pose<Scalar> frame{};
+    ContactFriction<Scalar> friction{};
+};
+
+/// \brief What the contact QP minimises over the squeeze z (w(z) = w_0 + B z, tau_c = J^T B z):
+///
+///     torque_weight |J^T B z|^2  +  moment_weight sum_i |t_i(z)|^2  +  squeeze_weight |B z|^2
+///
+/// The first term is the paper's L(20) (tau_c^T tau_c). The second penalises the contact moments
+/// t_i of w(z) about each contact point: the paper's objective alone moves the centre of pressure
+/// to the patch's edge even at rest, where the palm is at the brink of rolling, because a contact
+/// moment is a cheap way to save joint torque; weighted, the moments stay as small as the load
+/// allows and the centre of pressure central. Both terms are in N^2 m^2 (a force of 1 N costs
+/// about its lever arm, 0.3-1 m, in joint torque), so moment_weight is dimensionless; the default
+/// 100 makes a contact moment cost a hundred times its torque saving (docs/control.md, "Where the
+/// squeeze sits"). Set it to 0 for the paper's objective. The third term (N^2, |B z| = |z|) keeps
+/// the Hessian positive definite when J^T B loses rank; its default is negligible.
+template <typename ScalarType> struct SqueezeObjective {
+    using Scalar = ScalarType;
+    Scalar torque_weight = Scalar(1);      ///< >= 0, on |tau_c|^2 (L(20))
+    Scalar moment_weight = Scalar(100);    ///< >= 0, on the contact moments
+    Scalar squeeze_weight = Scalar(1e-6);  ///< >= 0, on |B z|^2; torque_weight + squeeze_weight > 0
+};
+
+/// \brief Options of the contact QP (docs/control.md, "When friction cannot hold the load").
+template <typename ScalarType> struct ContactQpOptions {
+    using Scalar = ScalarType;
+    /// Start each tick from the previous tick's active set (QpSolver::solve_warm): the same answer
+    /// in fewer steps when the active set does not change.
+    bool warm_start = true;
+    /// Cap on the QP's steps per tick; 0 takes QpSolver::default_iteration_limit.
+    int iteration_limit = 0;
+    /// The fallback when no squeeze satisfies every friction row: minimise the objective plus
+    /// fallback_weight max_k(H_kk) s^2 subject to margin_k >= -s for every row k, s >= 0, i.e.
+    /// violate the rows as little as possible (the largest violation s, in the margins' units),
+    /// and among such squeezes prefer the objective's. > 0.
+    Scalar fallback_weight = Scalar(1e6);
+};
+
+/// \brief Everything the controller model is built from (plain data; validated by ControllerModel).
+template <typename ScalarType> struct ControllerParameters {
+    using Scalar = ScalarType;
+    using DynamicVector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+    Index joints = 0;                         ///< Q, all joints of all arms (a shared torso counted once)
+    std::vector<ContactPoint<Scalar>> contacts;   ///< K >= 2, one per hand, in the order of J's row blocks
+    Matrix6<Scalar> stiffness = Matrix6<Scalar>::Zero();  ///< K_d, symmetric >= 0 (N/m, N m/rad)
+    Matrix6<Scalar> damping = Matrix6<Scalar>::Zero();    ///< D_d, symmetric >= 0 (N s/m, N m s/rad)
+    /// Posture (self-motion) gains, per joint, >= 0: tau_0 = h - K_n (q - q_n) - D_n qdot, applied
+    /// through the dynamically consistent null space of J (docs/control.md, "Posture").
+    DynamicVector posture_stiffness;          ///< K_n (Q), N m/rad
+    DynamicVector posture_damping;            ///< D_n (Q), N m s/rad
+    SqueezeObjective<Scalar> objective{};
+    ContactQpOptions<Scalar> qp{};
+};
+
+/// Rows of the contact QP for K contacts of n-edge pyramids: K (n + 7) (Dynamic passes through).
+constexpr int contact_qp_rows(int arms, int edges) noexcept
+{
+    return arms == Eigen::Dynamic || edges == Eigen::Dynamic ? Eigen::Dynamic : arms * friction_rows(edges);
+}
+
+/// n + 1 (Dynamic passes through): the fallback QP's extra slack variable and row.
+constexpr int plus_one(int n) noexcept { return n == Eigen::Dynamic ? Eigen::Dynamic : n + 1; }
+
+/// \brief The controller's constant part for K arms (contacts), Q joints and n-edge friction
+/// pyramids, each fixed or Dynamic. Built from ControllerParameters, which it validates: anything
+/// wrong throws InvalidModel naming the parameter and the contact (as "arm i").
+template <typename ScalarType, int ArmsAtCompileTime = Eigen::Dynamic, int JointsAtCompileTime = Eigen::Dynamic,
+          int EdgesAtCompileTime = 8>
+class ControllerModel {
+public:
+    using Scalar = ScalarType;
+    static constexpr int Arms = ArmsAtCompileTime;
+    static constexpr int Joints = JointsAtCompileTime;
+    static constexpr int Edges = EdgesAtCompileTime;
+    static constexpr int Stack = times_six(Arms);
+    static constexpr int Internal = internal_wrench_dimension(Arms);
+    static constexpr int Rows = contact_qp_rows(Arms, Edges);
+    using JointVector = Eigen::Matrix<Scalar, Joints, 1>;
+    using RowMatrix = Eigen::Matrix<Scalar, Rows, 6>;
+    using RowVector = Eigen::Matrix<Scalar, Rows, 1>;
+
+    explicit ControllerModel(const ControllerParameters<Scalar>& parameters)
+        : joints_(parameters.joints),
+          arms_(static_cast<Index>(parameters.contacts.size())),
+          contacts_(parameters.contacts),
+          stiffness_(parameters.stiffness),
+          damping_(parameters.damping),
+          objective_(parameters.objective),
+          qp_options_(parameters.qp)
+    {
+        validate(parameters);
+        posture_stiffness_ = parameters.posture_stiffness;
+        posture_damping_ = parameters.posture_damping;
+        build_rows();
+    }
+
+    Index arms() const noexcept { return arms_; }
+    Index joints() const noexcept { return joints_; }
+    /// Rows of the contact QP, sum_i (n_i + 7).
+    Index rows() const noexcept { return friction_rows_.rows(); }
+    const std::vector<ContactPoint<Scalar>>& contacts() const noexcept { return contacts_; }
+    const ContactPoint<Scalar>& contact(Index i) const noexcept { return contacts_[static_cast<std::size_t>(i)]; }
+    /// R(q_i): contact frame i to the object's body frame.
+    const Matrix3<Scalar>& contact_rotation(Index i) const noexcept
+    {
+        return contact_rotations_[static_cast<std::size_t>(i)];
+    }
+    const Matrix6<Scalar>& stiffness() const noexcept { return stiffness_; }
+    const Matrix6<Scalar>& damping() const noexcept { return damping_; }
+    const JointVector& posture_stiffness() const noexcept { return posture_stiffness_; }
+    const JointVector& posture_damping() const noexcept { return posture_damping_; }
+    const SqueezeObjective<Scalar>& objective() const noexcept { return objective_; }
+    const ContactQpOptions<Scalar>& qp_options() const noexcept { return qp_options_; }
+
+    /// The friction rows of all contacts in their contact frames, stacked (rows() x 6; contact i's
+    /// block starts at row_offset(i) and has n_i + 7 rows, in contact_frame_friction_rows' order),
+    /// their bounds and their norms (the margins' denominators).
+    const RowMatrix& contact_frame_rows() const noexcept { return friction_rows_; }
+    const RowVector& contact_frame_bounds() const noexcept { return friction_bounds_; }
+    const RowVector& row_norms() const noexcept { return friction_row_norms_; }
+    Index row_offset(Index i) const noexcept { return row_offsets_[static_cast<std::size_t>(i)]; }
+    Index row_count(Index i) const noexcept { return coopdyn::friction_rows(contact(i).friction.pyramid_edges); }
+
+private:
+    void validate(const ControllerParameters<Scalar>& parameters) const;
+    void build_rows();
+
+    Index joints_;
+    Index arms_;
+    std::vector<ContactPoint<Scalar>> contacts_;
+    std::vector<Matrix3<Scalar>> contact_rotations_;
+    std::vector<Index> row_offsets_;
+    Matrix6<Scalar> stiffness_;
+    Matrix6<Scalar> damping_;
+    JointVector posture_stiffness_;
+    JointVector posture_damping_;
+    SqueezeObjective<Scalar> objective_;
+    ContactQpOptions<Scalar> qp_options_;
+    RowMatrix friction_rows_;
+    RowVector friction_bounds_;
+    RowVector friction_row_norms_;
+};
+
+template <typename Scalar, int Arms, int Joints, int Edges>
+void ControllerModel<Scalar, Arms, Joints, Edges>::validate(const ControllerParameters<Scalar>& parameters) const
+{
+    const detail::ErrorContext model{detail::ErrorKind::model, "controller"};
+    if (arms_ < 2 || (Arms != Eigen::Dynamic && arms_ != Arms)) {
+        detail::fail(model, "contacts",
+                     "must hold " + (Arms == Eigen::Dynamic ? std::string("at least 2") : std::to_string(Arms)) +
+                         " contacts, got " + std::to_string(arms_));
+    }
+    if (joints_ < 6 * arms_ || (Joints != Eigen::Dynamic && joints_ != Joints)) {
+        detail::fail(model, "joints",
+                     "must be " + (Joints == Eigen::Dynamic ? "at least 6K = " + std::to_string(6 * arms_)
+                                                           : std::to_string(Joints)) +
+                         ", got " + std::to_string(joints_));
+    }
+    for (Index i = 0; i < arms_; ++i) {
+        const ContactPoint<Scalar>& point = contact(i);
+        const detail::ErrorContext context{detail::ErrorKind::model, "contact", i};
+        detail::require_finite(point.frame.position, context, "frame.position");
+        detail::require_unit_quaternion(point.frame.orientation, context, "frame.orientation");
+        point.friction.validate(i);
+        if (Edges != Eigen::Dynamic && point.friction.pyramid_edges != Edges) {
+            detail::fail(context, "friction.pyramid_edges",
+                         "must equal the controller's compile-time Edges = " + std::to_string(Edges) + ", got " +
+                             std::to_string(point.friction.pyramid_edges));
+        }
+    }
+    detail::require_symmetric_positive(parameters.stiffness, model, "stiffness", /*allow_semidefinite=*/true);
+    detail::require_symmetric_positive(parameters.damping, model, "damping", /*allow_semidefinite=*/true);
+    const auto require_joint_gains = [&](const auto& gains, const char* name) {
+        if (gains.size() != joints_) {
+            detail::fail(model, name,
+                         "must have one entry per joint (" + std::to_string(joints_) + "), got " +
+                             std::to_string(gains.size()));
+        }
+        for (Index j = 0; j < joints_; ++j) {
+            detail::require_non_negative(gains(j), model, name);
+        }
+    };
+    require_joint_gains(parameters.posture_stiffness, "posture_stiffness");
+    require_joint_gains(parameters.posture_damping, "posture_damping");
+    const SqueezeObjective<Scalar>& objective = parameters.objective;
+    detail::require_non_negative(objective.torque_weight, model, "objective.torque_weight");
+    detail::require_non_negative(objective.moment_weight, model, "objective.moment_weight");
+    detail::require_non_negative(objective.squeeze_weight, model, "objective.squeeze_weight");
+    if (!(objective.torque_weight + objective.squeeze_weight > Scalar(0))) {
+        detail::fail(model, "objective.squeeze_weight",
+                     "must be positive when objective.torque_weight is zero (the QP's Hessian must be "
+                     "positive definite)");
+    }
+    if (parameters.qp.iteration_limit < 0) {
+        detail::fail(model, "qp.iteration_limit",
+                     "must be non-negative (0 = the default), got " + std::to_string(parameters.qp.iteration_limit));
+    }
+    detail::require_positive(parameters.qp.fallback_weight, model, "qp.fallback_weight");
+}
+
+/// The contact-frame friction rows of every contact, stacked once: per tick they are only rotated
+/// into {w} (no trigonometry on the hot path).
+template <typename Scalar, int Arms, int Joints, int Edges>
+void ControllerModel<Scalar, Arms, Joints, Edges>::build_rows()
+{
+    Index total = 0;
+    for (const ContactPoint<Scalar>& point : contacts_) {
+        row_offsets_.push_back(total);
+        total += coopdyn::friction_rows(point.friction.pyramid_edges);
+        contact_rotations_.push_back(point.frame.orientation.toRotationMatrix());
+    }
+    friction_rows_ = RowMatrix::Zero(total, 6);
+    friction_bounds_ = RowVector::Zero(total);
+    for (Index i = 0; i < arms_; ++i) {
+        contact_frame_friction_rows(contact(i).friction, friction_rows_.middleRows(row_offset(i), row_count(i)),
+                                    friction_bounds_.segment(row_offset(i), row_count(i)));
+    }
+    friction_row_norms_ = friction_rows_.rowwise().norm();
+}
+
+/// \brief What the user's kinematics/dynamics library and state estimate give the controller each
+/// tick (docs/control.md, "Inputs and sign conventions"). Sized by the model; fill in place.
+template <typename ScalarType, int ArmsAtCompileTime = Eigen::Dynamic, int JointsAtCompileTime = Eigen::Dynamic>
+struct ControllerInput {
+    using Scalar = ScalarType;
+    static constexpr int Arms = ArmsAtCompileTime;
+    static constexpr int Joints = JointsAtCompileTime;
+    using JointVector = Eigen::Matrix<Scalar, Joints, 1>;
+
+    ControllerInput(Index arms, Index joints)
+        : inertia(Eigen::Matrix<Scalar, Joints, Joints>::Identity(joints, joints)),
+          bias(JointVector::Zero(joints)),
+          jacobian(Eigen::Matrix<Scalar, times_six(Arms), Joints>::Zero(6 * arms, joints)),
+          jacobian_rate_qdot(Eigen::Matrix<Scalar, times_six(Arms), 1>::Zero(6 * arms)),
+          positions(JointVector::Zero(joints)),
+          velocities(JointVector::Zero(joints)),
+          posture(JointVector::Zero(joints))
+    {
+    }
+    template <int Edges>
+    explicit ControllerInput(const ControllerModel<Scalar, Arms, Joints, Edges>& model)
+        : ControllerInput(model.arms(), model.joints())
+    {
+    }
+
+    Eigen::Matrix<Scalar, Joints, Joints> inertia;                 ///< M(q), Q x Q, SPD
+    JointVector bias;                                              ///< h(q, qdot): Coriolis, centrifugal, gravity
+    Eigen::Matrix<Scalar, times_six(Arms), Joints> jacobian;       ///< J, 6K x Q, contact points' twists [v; w] in {w}
+    Eigen::Matrix<Scalar, times_six(Arms), 1> jacobian_rate_qdot;  ///< Jdot qdot, 6K
+    JointVector positions;                                         ///< q (for the posture term)
+    JointVector velocities;                                        ///< qdot
+    RigidBodyState<Scalar> object{};                               ///< measured pose and twist of the object's centre, {w}
+    /// Measured (on a robot: filtered) acceleration [a; alpha] of the object's centre, {w}, for the
+    /// external-wrench estimate L(7).
+    Vector6<Scalar> object_acceleration = Vector6<Scalar>::Zero();
+    Pose<Scalar> desired_pose{};                                   ///< x_d
+    Vector6<Scalar> desired_twist = Vector6<Scalar>::Zero();       ///< xdot_d
+    Vector6<Scalar> desired_acceleration = Vector6<Scalar>::Zero();  ///< xdd_d
+    JointVector posture;                                           ///< q_n, the posture the self-motion is pulled to
+};
+
+}  // namespace coopdyn
