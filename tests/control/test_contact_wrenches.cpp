@@ -7,7 +7,8 @@
 //     G (-f) + F_x = 0                   (the massless object is in balance)
 //     J qdd + Jdot qdot = G^T a_o + b    (each contact moves with the object; b_i = [w x (w x r_i); 0])
 //
-// one square linear system in (qdd, f, a_o), solved densely. The hands apply w = -f to the object.
+// one square linear system in (qdd, f, a_o), solved densely (tests/common/arm_systems.hpp,
+// solve_physical_model). The hands apply w = -f to the object.
 
 #include "coopdyn/control/contact_wrenches.hpp"
 
@@ -21,6 +22,8 @@
 namespace {
 
 using coopdyn_test::JointSpaceSystem;
+using coopdyn_test::PhysicalSolution;
+using coopdyn_test::solve_physical_model;
 using coopdyn_test::MatrixXd;
 using coopdyn_test::random_joint_space_system;
 using coopdyn_test::random_vector;
@@ -30,39 +33,6 @@ using coopdyn_test::Vector6d;
 using coopdyn_test::VectorXd;
 using Index = Eigen::Index;
 using Dynamics = coopdyn::ProjectedDynamics<double, coopdyn::Dynamic, coopdyn::Dynamic>;
-
-struct PhysicalSolution {
-    VectorXd qdd;              // Q
-    VectorXd applied;          // w = -f, 6K: the hands' wrenches on the object
-    Vector6d object_acceleration;
-};
-
-PhysicalSolution solve_physical_model(const JointSpaceSystem& s, const VectorXd& tau, const Vector6d& external)
-{
-    const Index q = s.joints;
-    const Index m = 6 * s.arms;
-    const MatrixXd G = coopdyn_test::literal_grasp_matrix(s.r);
-    // The object's angular velocity from the contacts' motion (qdot is on the manifold).
-    const Vector6d object_twist = (G * G.transpose()).inverse() * G * s.J * s.qdot;
-    const Vector3d omega = object_twist.tail<3>();
-    VectorXd centripetal = VectorXd::Zero(m);
-    for (Index i = 0; i < s.arms; ++i) {
-        centripetal.segment<3>(6 * i) = omega.cross(omega.cross(Vector3d(s.r.col(i))));
-    }
-    MatrixXd system = MatrixXd::Zero(q + m + 6, q + m + 6);
-    VectorXd rhs = VectorXd::Zero(q + m + 6);
-    system.block(0, 0, q, q) = s.M;
-    system.block(0, q, q, m) = -s.J.transpose();
-    rhs.head(q) = tau - s.h;
-    system.block(q, q, 6, m) = G;  // G f = F_x
-    rhs.segment<6>(q) = external;
-    system.block(q + 6, 0, m, q) = s.J;
-    system.block(q + 6, q + m, m, 6) = -G.transpose();
-    rhs.tail(m) = centripetal - s.Jdot * s.qdot;
-    const VectorXd solution = system.partialPivLu().solve(rhs);
-    EXPECT_LT((system * solution - rhs).norm(), 1e-9 * rhs.norm());
-    return {solution.head(q), -solution.segment(q, m), solution.tail<6>()};
-}
 
 struct Bias {
     VectorXd qdd, w0;
@@ -97,6 +67,7 @@ TEST(ContactWrenches, BiasPlusSqueezeEqualsThePhysicalContactWrenches)
 
             const PhysicalSolution with_squeeze = solve_physical_model(s, tau_u + tau_c, F_x);
             const PhysicalSolution without = solve_physical_model(s, tau_u, F_x);
+            EXPECT_LT(std::max(with_squeeze.residual, without.residual), 1e-12);
             const VectorXd predicted = bias.w0 + d.internal_basis * z;
             worst_w = std::max(worst_w, (predicted - with_squeeze.applied).norm() / with_squeeze.applied.norm());
             worst_qdd = std::max(worst_qdd, (bias.qdd - without.qdd).norm() / without.qdd.norm());
@@ -130,6 +101,7 @@ TEST(ContactWrenches, PrintedEtaWithoutTheExternalWrenchTermIsWrong)
         const Vector6d F_x = 20.0 * Vector6d(random_vector(6, rng));
         const VectorXd tau_u = d.projector * d.object_jacobian.transpose() * F;
         const PhysicalSolution truth = solve_physical_model(s, tau_u, F_x);
+        EXPECT_LT(truth.residual, 1e-12);
         const Bias bias = library_bias(d, s, tau_u, F_x);
         worst_corrected = std::max(worst_corrected, (bias.w0 - truth.applied).norm() / truth.applied.norm());
 

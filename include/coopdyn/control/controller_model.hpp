@@ -49,15 +49,17 @@ template <typename ScalarType> struct ContactPoint {
 /// t_i of w(z) about each contact point: the paper's objective alone moves the centre of pressure
 /// to the patch's edge even at rest, where the palm is at the brink of rolling, because a contact
 /// moment is a cheap way to save joint torque; weighted, the moments stay as small as the load
-/// allows and the centre of pressure central. Both terms are in N^2 m^2 (a force of 1 N costs
-/// about its lever arm, 0.3-1 m, in joint torque), so moment_weight is dimensionless; the default
-/// 100 makes a contact moment cost a hundred times its torque saving (docs/control.md, "Where the
-/// squeeze sits"). Set it to 0 for the paper's objective. The third term (N^2, |B z| = |z|) keeps
-/// the Hessian positive definite when J^T B loses rank; its default is negligible.
+/// allows and the centre of pressure central. Both terms are in N^2 m^2, so moment_weight is
+/// dimensionless. Its default 1e4 was chosen by measurement (tests/control/test_controller.cpp,
+/// two random arms holding an object at rest): the paper's objective (moment_weight = 0) puts the
+/// centre of pressure on the patch's edge in every case, 1e2 in most, 1e3 at 10-75 % of the
+/// half-size, 1e4 within 8 % for about 15 % more squeeze torque (docs/control.md, "Where the
+/// squeeze sits"). The third term (N^2, |B z| = |z|) keeps the Hessian positive definite when
+/// J^T B loses rank; its default is negligible.
 template <typename ScalarType> struct SqueezeObjective {
     using Scalar = ScalarType;
     Scalar torque_weight = Scalar(1);      ///< >= 0, on |tau_c|^2 (L(20))
-    Scalar moment_weight = Scalar(100);    ///< >= 0, on the contact moments
+    Scalar moment_weight = Scalar(1e4);    ///< >= 0, on the contact moments (0: the paper's objective)
     Scalar squeeze_weight = Scalar(1e-6);  ///< >= 0, on |B z|^2; torque_weight + squeeze_weight > 0
 };
 

@@ -18,11 +18,15 @@
 ///
 /// Errata E10: Jc has rank 6K - 6, not 6K. The library never inverts Jc Jc^T: with B (6K x 6(K-1))
 /// an orthonormal basis of null(G), N = B B^T and Jc = B Jr with Jr = B^T J of full row rank (when
-/// J has), so Jc^+ = Jr^T (Jr Jr^T)^-1 B^T, a Cholesky factorisation of a 6(K-1) square matrix.
+/// J has), so Jc^+ = Jr^T (Jr Jr^T)^-1 B^T. Jr Jr^T is never formed either: a Householder QR
+/// Jr^T = Q1 R gives Jr Jr^T = R^T R, Jc^+ = Q1 R^-T B^T and P = I - Q1 Q1^T, and the rest of Q
+/// (a basis Q2 of the motions the grasp allows) turns Mc^-1 and L(6) into a Cholesky factorisation
+/// of the (Q - 6K + 6) square matrix Q2^T M Q2 (ProjectedDynamics; docs/control.md).
 #pragma once
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/model/grasp.hpp"
+#include "coopdyn/spatial/inertia.hpp"
 #include "coopdyn/spatial/skew.hpp"
 #include "coopdyn/spatial/spatial_vector.hpp"
 
@@ -30,6 +34,10 @@
 #include <Eigen/Householder>
 #include <Eigen/LU>
 #include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace coopdyn {
 
@@ -45,6 +53,46 @@ namespace detail {
 template <typename DerivedG> Matrix6<typename DerivedG::Scalar> grasp_gram(const Eigen::MatrixBase<DerivedG>& grasp)
 {
     return grasp * grasp.transpose();
+}
+
+/// G G^T as the composite spatial inertia of unit masses with unit rotational inertia at the
+/// contacts: G_i diag(I3, I3) G_i^T = [[I, S(r_i)^T], [S(r_i), I + S(r_i) S(r_i)^T]], the shift of
+/// (31). Its solve is closed-form (SpatialInertia::solve), with no 6x6 factorisation.
+template <typename DerivedR>
+SpatialInertia<typename DerivedR::Scalar> grasp_gram_inertia(const Eigen::MatrixBase<DerivedR>& r) noexcept
+{
+    using Scalar = typename DerivedR::Scalar;
+    const CentralInertia<Scalar> unit(Scalar(1), Symmetric3<Scalar>::scaled_identity(Scalar(1)));
+    SpatialInertia<Scalar> result;
+    for (Index i = 0; i < r.cols(); ++i) {
+        result.add_shifted(unit, r.col(i));
+    }
+    return result;
+}
+
+/// G w = sum_i G_i w_i = sum_i [f_i; t_i + r_i x f_i] (24), per contact: G has 18 nonzeros of 36
+/// per block.
+template <typename DerivedR, typename DerivedW>
+Force<typename DerivedW::Scalar> grasp_times(const Eigen::MatrixBase<DerivedR>& r,
+                                             const Eigen::MatrixBase<DerivedW>& stacked) noexcept
+{
+    using Scalar = typename DerivedW::Scalar;
+    Force<Scalar> result;
+    for (Index i = 0; i < r.cols(); ++i) {
+        result += Force<Scalar>::from(stacked.template segment<6>(6 * i)).shifted(r.col(i));
+    }
+    return result;
+}
+
+/// G^T y: block i is G_i^T y = [v + w x r_i; w], the twist of contact i (10).
+template <typename DerivedR, typename DerivedOut>
+void write_grasp_transpose_times(const Eigen::MatrixBase<DerivedR>& r, const Motion<typename DerivedR::Scalar>& twist,
+                                 const Eigen::MatrixBase<DerivedOut>& result_out) noexcept
+{
+    auto& result = const_cast<Eigen::MatrixBase<DerivedOut>&>(result_out);
+    for (Index i = 0; i < r.cols(); ++i) {
+        twist.at_point(r.col(i)).write_to(result.template segment<6>(6 * i));
+    }
 }
 
 /// Gdot v = sum_i [0; rdot_i x v_i,linear] with rdot_i = omega x r_i (the contacts turn with the
@@ -78,17 +126,102 @@ void grasp_rate_transpose_times(const Eigen::MatrixBase<DerivedR>& r, const Vect
     }
 }
 
-/// A Cholesky factor of a matrix that is regular to rounding: min L_jj^2 > 1000 eps max L_jj^2
-/// (the squared pivot ratio bounds the condition number from below). A rank-deficient Gram matrix
-/// factors "successfully" in floating point with a pivot of rounding size; this catches it.
+/// Squared pivots (a Cholesky factor's diagonal, or a QR's R diagonal: R^T R = A has the same
+/// pivots) of a matrix that is regular to rounding: min > 1000 eps max (the squared pivot ratio
+/// bounds the condition number from below). A rank-deficient Gram matrix factors "successfully"
+/// in floating point with a pivot of rounding size; this catches it (and NaN pivots).
+template <typename DerivedPivots> bool regular_pivots(const Eigen::MatrixBase<DerivedPivots>& squared_pivots) noexcept
+{
+    using Real = typename Eigen::NumTraits<typename DerivedPivots::Scalar>::Real;
+    const Real smallest = squared_pivots.minCoeff();
+    const Real largest = squared_pivots.maxCoeff();
+    return smallest > Real(1000) * Eigen::NumTraits<Real>::epsilon() * largest;
+}
+
+/// A Cholesky factor of a matrix that is regular to rounding (regular_pivots).
 template <typename Factor> bool regular_cholesky(const Factor& factor) noexcept
 {
-    using Real = typename Eigen::NumTraits<typename Factor::Scalar>::Real;
     if (factor.info() != Eigen::Success) {
         return false;
     }
-    const auto pivots = factor.matrixLLT().diagonal().cwiseAbs2();
-    return pivots.minCoeff() > Real(1000) * Eigen::NumTraits<Real>::epsilon() * pivots.maxCoeff();
+    return regular_pivots(factor.matrixLLT().diagonal().cwiseAbs2());
+}
+
+/// X <- T^-1 X for a triangular view T, one column at a time: Eigen's many-right-hand-side
+/// triangular solver is a blocked (GEMM-style) kernel whose packing costs more than the
+/// arithmetic at these sizes, while its one-column solver is unrolled for fixed sizes <= 8.
+template <typename Triangular, typename DerivedX>
+void solve_columns(const Triangular& triangular, const Eigen::MatrixBase<DerivedX>& X_out) noexcept
+{
+    auto& X = const_cast<Eigen::MatrixBase<DerivedX>&>(X_out);
+    for (Index j = 0; j < X.cols(); ++j) {
+        triangular.solveInPlace(X.col(j));
+    }
+}
+
+/// Householder QR of A (rows >= cols) in place: A becomes R (upper triangle; zeros below),
+/// reflector k is H_k = I - tau_k v_k v_k^T with v_k stored full-length in reflectors.col(k)
+/// (zeros above row k, 1 at row k), so that A_in = H_0 ... H_{cols-1} [R; 0]. The convention is
+/// Eigen's (makeHouseholder: R_kk = -sign(a_kk) |a_k|), written over whole columns so that every
+/// operation is a fixed-length, vectorised dot or axpy; Eigen's HouseholderQR works on shrinking
+/// dynamic blocks, which cost more than the arithmetic at these sizes.
+template <typename DerivedA, typename DerivedV, typename DerivedTau>
+void householder_qr_in_place(const Eigen::MatrixBase<DerivedA>& A_out, const Eigen::MatrixBase<DerivedV>& reflectors_out,
+                             const Eigen::MatrixBase<DerivedTau>& tau_out) noexcept
+{
+    using Scalar = typename DerivedA::Scalar;
+    auto& A = const_cast<Eigen::MatrixBase<DerivedA>&>(A_out);
+    auto& reflectors = const_cast<Eigen::MatrixBase<DerivedV>&>(reflectors_out);
+    auto& tau = const_cast<Eigen::MatrixBase<DerivedTau>&>(tau_out);
+    const Index rows = A.rows();
+    for (Index k = 0; k < A.cols(); ++k) {
+        auto v = reflectors.col(k);
+        v = A.col(k);
+        v.head(k).setZero();
+        const Scalar c0 = v(k);
+        v(k) = Scalar(0);
+        const Scalar tail_squared_norm = v.squaredNorm();
+        Scalar beta = c0;
+        if (tail_squared_norm <= (std::numeric_limits<Scalar>::min)()) {
+            tau(k) = Scalar(0);  // already triangular in this column: H_k = I
+        } else {
+            beta = std::sqrt(c0 * c0 + tail_squared_norm);
+            if (c0 >= Scalar(0)) {
+                beta = -beta;
+            }
+            v /= c0 - beta;
+            tau(k) = (beta - c0) / beta;
+        }
+        v(k) = Scalar(1);
+        for (Index j = k + 1; j < A.cols(); ++j) {
+            A.col(j) -= (tau(k) * v.dot(A.col(j))) * v;
+        }
+        A.col(k).tail(rows - k - 1).setZero();
+        A(k, k) = beta;
+    }
+}
+
+/// The leading Q.cols() columns of H_0 ... H_{m-1} (householder_qr_in_place), accumulated from
+/// the last reflector: Q <- H_k Q = Q - v_k (tau_k v_k^T Q). H_k changes rows k.. only, so the
+/// columns j < k of H_{k+1} ... H_{m-1} [I; 0] are still e_j and v_k^T e_j = 0: only columns k..
+/// are updated, each by one axpy (a lazy outer product is evaluated coefficient by coefficient).
+/// workspace: 1 x Q.cols().
+template <typename DerivedV, typename DerivedTau, typename DerivedQ, typename DerivedWork>
+void householder_q(const Eigen::MatrixBase<DerivedV>& reflectors, const Eigen::MatrixBase<DerivedTau>& tau,
+                   const Eigen::MatrixBase<DerivedQ>& Q_out, const Eigen::MatrixBase<DerivedWork>& workspace_out) noexcept
+{
+    auto& Q = const_cast<Eigen::MatrixBase<DerivedQ>&>(Q_out);
+    auto& workspace = const_cast<Eigen::MatrixBase<DerivedWork>&>(workspace_out);
+    Q.setIdentity();
+    for (Index k = reflectors.cols() - 1; k >= 0; --k) {
+        const auto v = reflectors.col(k);
+        for (Index j = k; j < Q.cols(); ++j) {
+            workspace(j) = tau(k) * v.dot(Q.col(j));
+        }
+        for (Index j = k; j < Q.cols(); ++j) {
+            Q.col(j) -= workspace(j) * v;
+        }
+    }
 }
 
 /// The closed-form basis of null(G), 6K x 6(K-1), not orthonormal: column 6(i-1)+a is the unit
@@ -157,9 +290,12 @@ internal_wrench_basis(const Eigen::MatrixBase<DerivedR>& r)
     const Index arms = r.cols();
     Basis closed_form = Basis::Zero(6 * arms, 6 * (arms - 1));
     detail::closed_form_internal_basis(r, closed_form);
-    const Eigen::HouseholderQR<Basis> qr(closed_form);
-    Basis basis = Basis::Identity(6 * arms, 6 * (arms - 1));
-    qr.householderQ().applyThisOnTheLeft(basis);
+    Basis reflectors(6 * arms, 6 * (arms - 1));
+    Eigen::Matrix<Scalar, internal_wrench_dimension(Arms), 1> tau(6 * (arms - 1));
+    Eigen::Matrix<Scalar, 1, internal_wrench_dimension(Arms)> workspace(6 * (arms - 1));
+    detail::householder_qr_in_place(closed_form, reflectors, tau);
+    Basis basis(6 * arms, 6 * (arms - 1));
+    detail::householder_q(reflectors, tau, basis, workspace);
     return basis;
 }
 
@@ -171,8 +307,27 @@ enum class ProjectionStatus {
     singular_task,        ///< Jx Mc^-1 P Jx^T not invertible: the object cannot be moved in some direction
 };
 
+/// Q - 6(K - 1), the dimension of the motions the grasp allows (null(Jr) = range(P)); Dynamic
+/// passes through, and fewer joints than internal wrenches give 0 (the grasp is then singular).
+constexpr int free_joint_dimension(int joints, int arms) noexcept
+{
+    return joints == Eigen::Dynamic || arms == Eigen::Dynamic
+               ? Eigen::Dynamic
+               : (joints > internal_wrench_dimension(arms) ? joints - internal_wrench_dimension(arms) : 0);
+}
+
 /// \brief Workspace and results of the projected dynamics for K arms and Q joints (fixed or
 /// Dynamic). Sized once at construction; compute() is noexcept and allocates nothing.
+///
+/// Method (the members keep the meaning of the formulas in the file comment): a Householder QR
+/// Jr^T = [Q1 Q2] [R; 0] (Q1: Q x 6(K-1), Q2: Q x (Q - 6(K-1)), [Q1 Q2] orthogonal) gives
+/// Jr Jr^T = R^T R, P = I - Q1 Q1^T = Q2 Q2^T and, because Q^T P = [0; Q2^T],
+///
+///     [Q1 Q2]^T Mc [Q1 Q2] = [[I, 0], [Q2^T M Q1, M22]],   M22 = Q2^T M Q2 (SPD),
+///
+/// block lower triangular: Mc^-1 needs only the Cholesky factor M22 = L22 L22^T, and
+/// Jx Mc^-1 P Jx^T = E^T E with E = L22^-1 Q2^T Jx^T (L(6) as a Gram matrix, symmetric positive
+/// semi-definite by construction).
 template <typename ScalarType, int ArmsAtCompileTime, int JointsAtCompileTime> class ProjectedDynamics {
 public:
     using Scalar = ScalarType;
@@ -209,18 +364,30 @@ public:
     /// wrench on the object is F.
     template <typename DerivedIn, typename DerivedOut>
     void subtract_grasp_pseudo_inverse_times(const Eigen::MatrixBase<DerivedIn>& wrench,
-                                             const Eigen::MatrixBase<DerivedOut>& out) const noexcept
+                                             const Eigen::MatrixBase<DerivedOut>& out_) const noexcept
     {
-        const Vector6<Scalar> solved = grasp_gram_factor_.solve(wrench);
-        const_cast<Eigen::MatrixBase<DerivedOut>&>(out).noalias() -= grasp.transpose() * solved;
+        auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
+        const Motion<Scalar> solved = grasp_gram_.solve(Force<Scalar>::from(wrench));
+        for (Index i = 0; i < arms(); ++i) {
+            out.template segment<6>(6 * i) -= solved.at_point(contact_offsets.col(i)).vector();  // G_i^T
+        }
     }
-    /// x -> Mc^-1 x (Q, into out; out may be x itself: x is copied first, because PartialPivLU
-    /// permutes an aliased right-hand side through a heap-allocated mask).
+    /// x -> Mc^-1 x (Q, into out; out may be x itself). With v = [Q1 Q2]^T x (see the class
+    /// comment): Mc^-1 x = Q1 v1 + Q2 M22^-1 (v2 - Q2^T M Q1 v1).
     template <typename DerivedIn, typename DerivedOut>
-    void constrained_inertia_solve(const Eigen::MatrixBase<DerivedIn>& x, const Eigen::MatrixBase<DerivedOut>& out) const noexcept
+    void constrained_inertia_solve(const Eigen::MatrixBase<DerivedIn>& x, const Eigen::MatrixBase<DerivedOut>& out_) const noexcept
     {
-        solve_scratch_ = x;
-        const_cast<Eigen::MatrixBase<DerivedOut>&>(out) = constrained_inertia_factor_.solve(solve_scratch_);
+        auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
+        const Index internal = 6 * (arms() - 1);
+        const Index free = free_joints();
+        solve_scratch_.noalias() = reduced_q_.transpose() * x;  // x is not read after this line
+        solve_internal_.noalias() =
+            reduced_q_.template leftCols<Internal>(internal) * solve_scratch_.template head<Internal>(internal);  // Q1 v1
+        auto free_part = solve_scratch_.template segment<Free>(internal, free);  // (tail<N>(n) ignores n)
+        free_part.noalias() -= free_rows_inertia_ * solve_internal_;  // Q2^T M Q1 v1
+        free_inertia_factor_.solveInPlace(free_part);
+        out = solve_internal_;
+        out.noalias() += reduced_q_.template rightCols<Free>(free) * free_part;
     }
 
     Index arms() const noexcept { return constraint_jacobian.rows() / 6; }
@@ -242,31 +409,43 @@ public:
     ProjectionStatus status = ProjectionStatus::ok;
 
 private:
-    using ReducedJacobian = Eigen::Matrix<Scalar, Internal, Joints>;
-    using ReducedMatrix = Eigen::Matrix<Scalar, Internal, Internal>;
+    static constexpr int Free = free_joint_dimension(Joints, Arms);
     using Basis = Eigen::Matrix<Scalar, Stack, Internal>;
+    using ReducedJacobianTranspose = Eigen::Matrix<Scalar, Joints, Internal>;
+    using FreeMatrix = Eigen::Matrix<Scalar, Free, Free>;
 
+    Index free_joints() const noexcept { return reduced_q_.cols() - 6 * (arms() - 1); }
     void compute_basis() noexcept;
     template <typename DerivedJ, typename DerivedJdotQdot, typename DerivedQdot>
     void compute_rates(const Eigen::MatrixBase<DerivedJ>& J, const Eigen::MatrixBase<DerivedJdotQdot>& Jdot_qdot,
                        const Eigen::MatrixBase<DerivedQdot>& qdot) noexcept;
+    /// R of Jr^T = Q1 R (Jr Jr^T = R^T R) in its upper triangle.
+    auto reduced_r() const noexcept
+    {
+        const Index internal = 6 * (arms() - 1);
+        return reduced_jacobian_transpose_.template topLeftCorner<Internal, Internal>(internal, internal);
+    }
 
-    Eigen::LLT<Matrix6<Scalar>> grasp_gram_factor_;
-    Basis closed_form_basis_;
-    Eigen::HouseholderQR<Basis> basis_qr_;
-    Eigen::Matrix<Scalar, 1, Internal> householder_workspace_;
-    ReducedJacobian reduced_jacobian_;  // Jr = B^T J
-    ReducedMatrix reduced_gram_;        // Jr Jr^T
-    Eigen::LLT<ReducedMatrix> reduced_gram_factor_;
-    ReducedJacobian reduced_solved_;    // (Jr Jr^T)^-1 Jr
-    Eigen::PartialPivLU<JointMatrix> constrained_inertia_factor_;
-    Eigen::Matrix<Scalar, Joints, 6> object_jacobian_scratch_;              // P Jx^T
-    Eigen::Matrix<Scalar, Joints, 6> projected_object_jacobian_transpose_;  // Mc^-1 P Jx^T
+    SpatialInertia<Scalar> grasp_gram_;  // G G^T
+    Basis closed_form_basis_;  // then its R
+    Basis basis_reflectors_;
+    Eigen::Matrix<Scalar, Internal, 1> basis_tau_;
+    Eigen::Matrix<Scalar, 1, Internal> basis_workspace_;
+    ReducedJacobianTranspose reduced_jacobian_transpose_;  // Jr^T = J^T B, then R of Jr^T = Q1 R
+    ReducedJacobianTranspose reduced_reflectors_;
+    Eigen::Matrix<Scalar, Internal, 1> reduced_tau_;
+    JointMatrix reduced_q_;        // [Q1 Q2]
+    Eigen::Matrix<Scalar, Free, Joints> free_rows_inertia_;  // Q2^T M
+    FreeMatrix free_inertia_;      // M22 = Q2^T M Q2
+    Eigen::LLT<FreeMatrix> free_inertia_factor_;
+    Eigen::Matrix<Scalar, Free, 6> task_reduced_;  // E = L22^-1 Q2^T Jx^T
     Eigen::LLT<Matrix6<Scalar>> task_factor_;
     mutable Eigen::Matrix<Scalar, Internal, 1> reduced_;  // scratch of the pseudo-inverse products
     StackVector stack_scratch_;
     JointVector joint_scratch_;
+    Eigen::Matrix<Scalar, 1, Joints> reduced_workspace_;
     mutable JointVector solve_scratch_;
+    mutable JointVector solve_internal_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -286,37 +465,40 @@ ProjectedDynamics<Scalar, Arms, Joints>::ProjectedDynamics(Index arms, Index joi
       object_jacobian_rate_qdot(Vector6<Scalar>::Zero()),
       constraint_jacobian_rate_qdot(StackVector::Zero(6 * arms)),
       projector_rate_qdot(JointVector::Zero(joints)),
-      grasp_gram_factor_(6),
       closed_form_basis_(Basis::Zero(6 * arms, 6 * (arms - 1))),
-      basis_qr_(6 * arms, 6 * (arms - 1)),
-      householder_workspace_(Eigen::Matrix<Scalar, 1, Internal>::Zero(1, 6 * (arms - 1))),
-      reduced_jacobian_(ReducedJacobian::Zero(6 * (arms - 1), joints)),
-      reduced_gram_(ReducedMatrix::Zero(6 * (arms - 1), 6 * (arms - 1))),
-      reduced_gram_factor_(6 * (arms - 1)),
-      reduced_solved_(ReducedJacobian::Zero(6 * (arms - 1), joints)),
-      constrained_inertia_factor_(joints),
-      object_jacobian_scratch_(Eigen::Matrix<Scalar, Joints, 6>::Zero(joints, 6)),
-      projected_object_jacobian_transpose_(Eigen::Matrix<Scalar, Joints, 6>::Zero(joints, 6)),
+      basis_reflectors_(Basis::Zero(6 * arms, 6 * (arms - 1))),
+      basis_tau_(Eigen::Matrix<Scalar, Internal, 1>::Zero(6 * (arms - 1))),
+      basis_workspace_(Eigen::Matrix<Scalar, 1, Internal>::Zero(1, 6 * (arms - 1))),
+      reduced_jacobian_transpose_(ReducedJacobianTranspose::Zero(joints, 6 * (arms - 1))),
+      reduced_reflectors_(ReducedJacobianTranspose::Zero(joints, 6 * (arms - 1))),
+      reduced_tau_(Eigen::Matrix<Scalar, Internal, 1>::Zero(6 * (arms - 1))),
+      reduced_q_(JointMatrix::Identity(joints, joints)),
+      free_rows_inertia_(Eigen::Matrix<Scalar, Free, Joints>::Zero(std::max<Index>(joints - 6 * (arms - 1), 0), joints)),
+      free_inertia_(FreeMatrix::Identity(std::max<Index>(joints - 6 * (arms - 1), 0),
+                                         std::max<Index>(joints - 6 * (arms - 1), 0))),
+      free_inertia_factor_(std::max<Index>(joints - 6 * (arms - 1), 0)),
+      task_reduced_(Eigen::Matrix<Scalar, Free, 6>::Zero(std::max<Index>(joints - 6 * (arms - 1), 0), 6)),
       task_factor_(6),
       reduced_(Eigen::Matrix<Scalar, Internal, 1>::Zero(6 * (arms - 1))),
       stack_scratch_(StackVector::Zero(6 * arms)),
       joint_scratch_(JointVector::Zero(joints)),
-      solve_scratch_(JointVector::Zero(joints))
+      reduced_workspace_(Eigen::Matrix<Scalar, 1, Joints>::Zero(1, joints)),
+      solve_scratch_(JointVector::Zero(joints)),
+      solve_internal_(JointVector::Zero(joints))
 {
     COOPDYN_ASSERT(arms >= 2, "projected dynamics need at least two arms");
     COOPDYN_ASSERT(Arms == Eigen::Dynamic || arms == Arms, "arms must equal the fixed K");
     COOPDYN_ASSERT(Joints == Eigen::Dynamic || joints == Joints, "joints must equal the fixed Q");
 }
 
-/// B from the closed-form basis, orthonormalised in place (no allocation: the QR and its
-/// Householder workspace were sized at construction).
+/// B from the closed-form basis by a Householder QR (as internal_wrench_basis; no allocation: the
+/// reflectors and the workspace were sized at construction).
 template <typename Scalar, int Arms, int Joints>
 void ProjectedDynamics<Scalar, Arms, Joints>::compute_basis() noexcept
 {
     detail::closed_form_internal_basis(contact_offsets, closed_form_basis_);
-    basis_qr_.compute(closed_form_basis_);
-    internal_basis.setIdentity();
-    basis_qr_.householderQ().applyThisOnTheLeft(internal_basis, householder_workspace_);
+    detail::householder_qr_in_place(closed_form_basis_, basis_reflectors_, basis_tau_);
+    detail::householder_q(basis_reflectors_, basis_tau_, internal_basis, basis_workspace_);
 }
 
 template <typename Scalar, int Arms, int Joints>
@@ -328,47 +510,78 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::compute(
     const Eigen::MatrixBase<DerivedR>& r) noexcept
 {
     const Index joints = this->joints();
+    const Index internal = 6 * (arms() - 1);
     COOPDYN_REQUIRE_SHAPE(r.cols() == arms() && J.rows() == 6 * arms() && J.cols() == joints && M.rows() == joints &&
                               M.cols() == joints && h.size() == joints && qdot.size() == joints &&
                               Jdot_qdot.size() == 6 * arms(),
                           "projected dynamics: inputs sized for another number of arms or joints");
-    // Grasp geometry: G, Jx = (G G^T)^-1 G J, Jc = J - G^T Jx, B.
+    // Grasp geometry: G, Jx = (G G^T)^-1 G J, Jc = J - G^T Jx, B. G G^T is the composite inertia
+    // of unit masses with unit rotational inertia at the r_i (G_i diag(I, I) G_i^T), solved in
+    // closed form; G and G^T are applied per contact (G_i = [[I, 0], [S(r_i), I]], (24)).
     contact_offsets = r;
     write_grasp_matrix(contact_offsets, grasp);
-    grasp_gram_factor_.compute(detail::grasp_gram(grasp));
-    object_jacobian.noalias() = grasp * J;
-    grasp_gram_factor_.solveInPlace(object_jacobian);
-    constraint_jacobian = J;
-    constraint_jacobian.noalias() -= grasp.transpose() * object_jacobian;
+    grasp_gram_ = detail::grasp_gram_inertia(contact_offsets);
+    for (Index j = 0; j < joints; ++j) {
+        const Motion<Scalar> column = grasp_gram_.solve(detail::grasp_times(contact_offsets, J.col(j)));
+        column.write_to(object_jacobian.col(j));
+        for (Index i = 0; i < arms(); ++i) {
+            constraint_jacobian.template block<6, 1>(6 * i, j) =
+                J.template block<6, 1>(6 * i, j) - column.at_point(contact_offsets.col(i)).vector();
+        }
+    }
     compute_basis();
 
-    // Jc^+ through Jr = B^T J (errata E10): P = I - Jr^T (Jr Jr^T)^-1 Jr.
-    reduced_jacobian_.noalias() = internal_basis.transpose() * J;
-    reduced_gram_.noalias() = reduced_jacobian_ * reduced_jacobian_.transpose();
-    reduced_gram_factor_.compute(reduced_gram_);
-    if (!detail::regular_cholesky(reduced_gram_factor_)) {
+    // Jc^+ through Jr = B^T J (errata E10), by a Householder QR Jr^T = Q1 R: Jr Jr^T = R^T R, and
+    // R's diagonal is its Cholesky factor's up to signs, so the pivot test of a Cholesky
+    // factorisation of Jr Jr^T applies unchanged. Jc^+ Jc = Jr^T (Jr Jr^T)^-1 Jr = Q1 Q1^T, so
+    // P = I - Q1 Q1^T (L(4)) without squaring Jr's condition number.
+    if (joints < internal) {
+        status = ProjectionStatus::singular_constraint;  // Jr has more rows than columns
+        return status;
+    }
+    const Index free = joints - internal;
+    reduced_jacobian_transpose_.noalias() = J.transpose().lazyProduct(internal_basis);
+    detail::householder_qr_in_place(reduced_jacobian_transpose_, reduced_reflectors_, reduced_tau_);
+    if (!detail::regular_pivots(reduced_jacobian_transpose_.diagonal().cwiseAbs2())) {
         status = ProjectionStatus::singular_constraint;
         return status;
     }
-    reduced_solved_ = reduced_jacobian_;
-    reduced_gram_factor_.solveInPlace(reduced_solved_);  // (Jr Jr^T)^-1 Jr
-    projector.setIdentity();
-    projector.noalias() -= reduced_jacobian_.transpose() * reduced_solved_;
+    detail::householder_q(reduced_reflectors_, reduced_tau_, reduced_q_, reduced_workspace_);
+    const auto q1 = reduced_q_.template leftCols<Internal>(internal);
+    const auto q2 = reduced_q_.template rightCols<Free>(free);
+    // P = I - Q1 Q1^T = Q2 Q2^T, from the thinner of the two. Coefficient-based products
+    // throughout: at these sizes Eigen's GEMM path costs more in packing than in arithmetic.
+    if (free < internal) {
+        projector.noalias() = q2.lazyProduct(q2.transpose());
+    } else {
+        projector.setIdentity();
+        projector.noalias() -= q1.lazyProduct(q1.transpose());
+    }
 
-    // Mc = P M + I - P (L(5)) and Lambda_c = (Jx Mc^-1 P Jx^T)^-1 (L(6)).
-    constrained_inertia.noalias() = projector * M;
-    constrained_inertia += JointMatrix::Identity(joints, joints) - projector;
-    constrained_inertia_factor_.compute(constrained_inertia);
-    // Out of place: PartialPivLU permutes an aliased right-hand side through a heap-allocated mask.
-    object_jacobian_scratch_.noalias() = projector * object_jacobian.transpose();
-    projected_object_jacobian_transpose_ = constrained_inertia_factor_.solve(object_jacobian_scratch_);
-    const Matrix6<Scalar> task_inverse = object_jacobian * projected_object_jacobian_transpose_;
-    task_factor_.compute(Scalar(0.5) * (task_inverse + task_inverse.transpose()));
+    // Mc = P M + I - P = Q2 (Q2^T M) + I - P (L(5)); M22 = (Q2^T M) Q2 (the class comment).
+    free_rows_inertia_.noalias() = q2.transpose().lazyProduct(M);
+    constrained_inertia = -projector;
+    constrained_inertia.diagonal().array() += Scalar(1);
+    constrained_inertia.noalias() += q2.lazyProduct(free_rows_inertia_);
+    free_inertia_.noalias() = free_rows_inertia_.lazyProduct(q2);
+    free_inertia_factor_.compute(free_inertia_);
+    if (free_inertia_factor_.info() != Eigen::Success) {
+        status = ProjectionStatus::singular_task;  // M not positive definite on the grasp's motions
+        return status;
+    }
+
+    // Lambda_c^-1 = Jx Mc^-1 P Jx^T = E^T E, E = L22^-1 Q2^T Jx^T (L(6)).
+    task_reduced_.noalias() = q2.transpose().lazyProduct(object_jacobian.transpose());
+    detail::solve_columns(free_inertia_factor_.matrixL(), task_reduced_);
+    task_factor_.compute(task_reduced_.transpose().lazyProduct(task_reduced_));
     if (!detail::regular_cholesky(task_factor_)) {
         status = ProjectionStatus::singular_task;
         return status;
     }
-    task_inertia = task_factor_.solve(Matrix6<Scalar>::Identity());
+    // Lambda_c = L^-T L^-1 (task_factor_ = L L^T), symmetric by construction.
+    Matrix6<Scalar> task_factor_inverse = Matrix6<Scalar>::Identity();
+    detail::solve_columns(task_factor_.matrixL(), task_factor_inverse);
+    task_inertia.noalias() = task_factor_inverse.transpose().lazyProduct(task_factor_inverse);
 
     // The exact rates, on the constraint manifold.
     compute_rates(J, Jdot_qdot, qdot);
@@ -396,21 +609,26 @@ void ProjectedDynamics<Scalar, Arms, Joints>::compute_rates(const Eigen::MatrixB
     object_twist.noalias() = object_jacobian * qdot;
     const Vector3<Scalar> omega = object_twist.template tail<3>();
     stack_scratch_.noalias() = J * qdot;  // v
-    Vector6<Scalar> rate = grasp * Jdot_qdot + detail::grasp_rate_times(contact_offsets, omega, stack_scratch_);
+    Vector6<Scalar> rate = detail::grasp_times(contact_offsets, Jdot_qdot).vector() +
+                           detail::grasp_rate_times(contact_offsets, omega, stack_scratch_);
     // Adot y = Gdot (G^T y) + G (Gdot^T y)
-    stack_scratch_.noalias() = grasp.transpose() * object_twist;
+    detail::write_grasp_transpose_times(contact_offsets, Motion<Scalar>::from(object_twist), stack_scratch_);
     rate -= detail::grasp_rate_times(contact_offsets, omega, stack_scratch_);
     detail::grasp_rate_transpose_times(contact_offsets, omega, object_twist, stack_scratch_);  // Gdot^T y
-    rate.noalias() -= grasp * stack_scratch_;
-    object_jacobian_rate_qdot = grasp_gram_factor_.solve(rate);
+    rate -= detail::grasp_times(contact_offsets, stack_scratch_).vector();
+    object_jacobian_rate_qdot = grasp_gram_.solve(Force<Scalar>::from(rate)).vector();
 
     constraint_jacobian_rate_qdot = Jdot_qdot - stack_scratch_;
-    constraint_jacobian_rate_qdot.noalias() -= grasp.transpose() * object_jacobian_rate_qdot;
+    const Motion<Scalar> object_rate = Motion<Scalar>::from(object_jacobian_rate_qdot);
+    for (Index i = 0; i < arms(); ++i) {
+        constraint_jacobian_rate_qdot.template segment<6>(6 * i) -= object_rate.at_point(contact_offsets.col(i)).vector();
+    }
     constraint_pseudo_inverse_times(constraint_jacobian_rate_qdot, projector_rate_qdot);
     projector_rate_qdot = -projector_rate_qdot;
 }
 
-/// Jc^+ x = Jr^T (Jr Jr^T)^-1 B^T x (Jc = B Jr, B orthonormal, Jr full row rank; errata E10).
+/// Jc^+ x = Jr^T (Jr Jr^T)^-1 B^T x = Q1 R^-T B^T x (Jc = B Jr, B orthonormal, Jr^T = Q1 R of
+/// full column rank; errata E10).
 template <typename Scalar, int Arms, int Joints>
 template <typename DerivedIn, typename DerivedOut>
 void ProjectedDynamics<Scalar, Arms, Joints>::constraint_pseudo_inverse_times(
@@ -419,11 +637,12 @@ void ProjectedDynamics<Scalar, Arms, Joints>::constraint_pseudo_inverse_times(
     auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
     auto& reduced = reduced_;
     reduced.noalias() = internal_basis.transpose() * x;
-    reduced_gram_factor_.solveInPlace(reduced);
-    out.noalias() = reduced_jacobian_.transpose() * reduced;
+    reduced_r().transpose().template triangularView<Eigen::Lower>().solveInPlace(reduced);
+    out.noalias() = reduced_q_.template leftCols<Internal>(reduced.size()) * reduced;
 }
 
-/// (Jc^T)^+ y = B (Jr Jr^T)^-1 Jr y: the minimum-norm lambda with Jc^T lambda = P-free part of y.
+/// (Jc^T)^+ y = B (Jr Jr^T)^-1 Jr y = B R^-1 Q1^T y: the minimum-norm lambda with Jc^T lambda =
+/// P-free part of y.
 template <typename Scalar, int Arms, int Joints>
 template <typename DerivedIn, typename DerivedOut>
 void ProjectedDynamics<Scalar, Arms, Joints>::constraint_transpose_pseudo_inverse_times(
@@ -431,8 +650,8 @@ void ProjectedDynamics<Scalar, Arms, Joints>::constraint_transpose_pseudo_invers
 {
     auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
     auto& reduced = reduced_;
-    reduced.noalias() = reduced_jacobian_ * y;
-    reduced_gram_factor_.solveInPlace(reduced);
+    reduced.noalias() = reduced_q_.template leftCols<Internal>(reduced.size()).transpose() * y;
+    reduced_r().template triangularView<Eigen::Upper>().solveInPlace(reduced);
     out.noalias() = internal_basis * reduced;
 }
 
