@@ -1,0 +1,277 @@
+// Bad input to the projected inverse-dynamics controller (include/coopdyn/control/controller.hpp,
+// controller_model.hpp): every refused parameter throws InvalidModel naming the parameter and the
+// contact; every bad per-tick input is a status with finite torques (never a NaN, never an
+// exception); a data or input of another size stops the program with a message.
+
+#include "coopdyn/control/controller.hpp"
+
+#include "arm_systems.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+
+namespace {
+
+using coopdyn_test::MatrixXd;
+using coopdyn_test::Rng;
+using coopdyn_test::Vector3d;
+using coopdyn_test::VectorXd;
+using Index = Eigen::Index;
+using coopdyn::Dynamic;
+using Parameters = coopdyn::ControllerParameters<double>;
+using Model = coopdyn::ControllerModel<double, Dynamic, Dynamic>;
+using Data = coopdyn::ControllerData<double, Dynamic, Dynamic>;
+using Input = coopdyn::ControllerInput<double, Dynamic, Dynamic>;
+using Quaterniond = Eigen::Quaterniond;
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+/// Two opposed palms on free 6-DOF bodies (J = I, Q = 12): a valid controller to spoil.
+Parameters valid_parameters()
+{
+    Parameters p;
+    p.joints = 12;
+    Eigen::Matrix3d left, right;
+    left << 0, 0, 1, 0, -1, 0, 1, 0, 0;
+    right << 0, 0, -1, 0, 1, 0, 1, 0, 0;
+    coopdyn::ContactPoint<double> a, b;
+    a.frame = {Vector3d(-0.15, 0, 0), Quaterniond(left)};
+    b.frame = {Vector3d(0.15, 0, 0), Quaterniond(right)};
+    a.friction.friction_coefficient = b.friction.friction_coefficient = 0.5;
+    a.friction.minimum_normal_force = b.friction.minimum_normal_force = 2.0;
+    p.contacts = {a, b};
+    p.stiffness = 500.0 * Eigen::Matrix<double, 6, 6>::Identity();
+    p.damping = 50.0 * Eigen::Matrix<double, 6, 6>::Identity();
+    p.posture_stiffness = VectorXd::Constant(12, 10.0);
+    p.posture_damping = VectorXd::Constant(12, 1.0);
+    return p;
+}
+
+Input valid_input()
+{
+    Input in(2, 12);
+    in.inertia = MatrixXd::Identity(12, 12);
+    in.bias = VectorXd::Constant(12, 0.5);
+    in.jacobian = MatrixXd::Identity(12, 12);
+    in.object.pose = {Vector3d(0, 0, -0.02), Quaterniond::Identity()};
+    return in;
+}
+
+/// Builds the model and expects InvalidModel naming `parameter` (and `contact`, or no arm).
+void expect_refused(const Parameters& p, const std::string& parameter, Index contact = coopdyn::no_arm)
+{
+    try {
+        const Model model(p);
+        ADD_FAILURE() << "accepted a bad '" << parameter << "'";
+    } catch (const coopdyn::InvalidModel& error) {
+        EXPECT_EQ(error.parameter(), parameter) << error.what();
+        EXPECT_EQ(error.arm(), contact) << error.what();
+        EXPECT_FALSE(error.problem().empty());
+    }
+}
+
+TEST(ControllerModel, RefusesEachBadParameterByName)
+{
+    EXPECT_NO_THROW(Model{valid_parameters()});
+    {
+        Parameters p = valid_parameters();
+        p.contacts.pop_back();
+        expect_refused(p, "contacts");
+    }
+    {
+        Parameters p = valid_parameters();
+        p.joints = 11;  // fewer than 6K
+        expect_refused(p, "joints");
+    }
+    {
+        Parameters p = valid_parameters();
+        p.contacts[1].friction.friction_coefficient = -0.2;
+        expect_refused(p, "friction_coefficient", 1);
+    }
+    {
+        Parameters p = valid_parameters();
+        p.contacts[0].friction.patch_half_length_y = 0.0;
+        expect_refused(p, "patch_half_length_y", 0);
+    }
+    {
+        Parameters p = valid_parameters();
+        p.contacts[1].friction.minimum_normal_force = nan;
+        expect_refused(p, "minimum_normal_force", 1);
+    }
+    {
+        Parameters p = valid_parameters();
+        p.contacts[0].friction.pyramid_edges = 200;
+        expect_refused(p, "pyramid_edges", 0);
+    }
+    {
+        Parameters p = valid_parameters();
+        p.contacts[1].frame.position(2) = nan;
+        expect_refused(p, "frame.position", 1);
+    }
+    {
+        Parameters p = valid_parameters();
+        p.contacts[0].frame.orientation.coeffs() *= 1.1;
+        expect_refused(p, "frame.orientation", 0);
+    }
+    {
+        Parameters p = valid_parameters();
+        p.stiffness(0, 1) = 50.0;  // not symmetric
+        expect_refused(p, "stiffness");
+    }
+    {
+        Parameters p = valid_parameters();
+        p.damping(3, 3) = -1.0;
+        expect_refused(p, "damping");
+    }
+    {
+        Parameters p = valid_parameters();
+        p.posture_stiffness(4) = -1.0;
+        expect_refused(p, "posture_stiffness");
+    }
+    {
+        Parameters p = valid_parameters();
+        p.posture_damping = VectorXd::Ones(11);
+        expect_refused(p, "posture_damping");
+    }
+    {
+        Parameters p = valid_parameters();
+        p.objective.moment_weight = -1.0;
+        expect_refused(p, "objective.moment_weight");
+    }
+    {
+        Parameters p = valid_parameters();
+        p.objective.torque_weight = 0.0;
+        p.objective.squeeze_weight = 0.0;  // the Hessian would be singular
+        expect_refused(p, "objective.squeeze_weight");
+    }
+    {
+        Parameters p = valid_parameters();
+        p.qp.fallback_weight = 0.0;
+        expect_refused(p, "qp.fallback_weight");
+    }
+    {
+        Parameters p = valid_parameters();
+        p.qp.iteration_limit = -3;
+        expect_refused(p, "qp.iteration_limit");
+    }
+}
+
+TEST(ControllerModel, FixedSizesRefuseAnotherCountOfContactsJointsOrEdges)
+{
+    const Parameters p = valid_parameters();
+    EXPECT_NO_THROW((coopdyn::ControllerModel<double, 2, 12>(p)));
+    try {
+        coopdyn::ControllerModel<double, 3, 12> model(p);
+        ADD_FAILURE() << "accepted 2 contacts for K = 3";
+    } catch (const coopdyn::InvalidModel& error) {
+        EXPECT_EQ(error.parameter(), "contacts");
+    }
+    try {
+        coopdyn::ControllerModel<double, 2, 14> model(p);
+        ADD_FAILURE() << "accepted 12 joints for Q = 14";
+    } catch (const coopdyn::InvalidModel& error) {
+        EXPECT_EQ(error.parameter(), "joints");
+    }
+    try {
+        coopdyn::ControllerModel<double, 2, 12, 6> model(p);  // the contacts have n = 8
+        ADD_FAILURE() << "accepted 8-edge pyramids for Edges = 6";
+    } catch (const coopdyn::InvalidModel& error) {
+        EXPECT_EQ(error.parameter(), "friction.pyramid_edges");
+        EXPECT_EQ(error.arm(), 0);
+    }
+    // Dynamic edges: each contact its own pyramid.
+    Parameters mixed = p;
+    mixed.contacts[1].friction.pyramid_edges = 5;
+    const coopdyn::ControllerModel<double, 2, 12, Dynamic> model(mixed);
+    EXPECT_EQ(model.rows(), 15 + 12);
+    EXPECT_EQ(model.row_offset(1), 15);
+}
+
+/// One tick with `spoil` applied to a valid input: the status, the named input, finite torques.
+void expect_status(const std::function<void(Input&)>& spoil, coopdyn::ControlStatus expected,
+                   const std::string& named_input)
+{
+    const Model model(valid_parameters());
+    Data data(model);
+    Input in = valid_input();
+    coopdyn::controller_tick(model, data, in);
+    ASSERT_EQ(data.status, coopdyn::ControlStatus::ok);
+    spoil(in);
+    const VectorXd tau = coopdyn::controller_tick(model, data, in);
+    EXPECT_EQ(data.status, expected) << coopdyn::to_string(data.status);
+    EXPECT_NE(std::string(data.input_problem).find(named_input), std::string::npos) << data.input_problem;
+    EXPECT_TRUE(tau.allFinite());
+    EXPECT_TRUE(data.contact_wrenches.allFinite() && data.squeeze.allFinite());
+    // The next good tick recovers.
+    const VectorXd good = coopdyn::controller_tick(model, data, valid_input());
+    EXPECT_EQ(data.status, coopdyn::ControlStatus::ok);
+    EXPECT_TRUE(good.allFinite());
+}
+
+TEST(ControllerTick, ANaNInAnyInputIsAStatusWithZeroTorque)
+{
+    using coopdyn::ControlStatus;
+    const auto invalid = ControlStatus::invalid_input;
+    expect_status([](Input& in) { in.inertia(3, 4) = nan; }, invalid, "inertia");
+    expect_status([](Input& in) { in.bias(0) = nan; }, invalid, "bias");
+    expect_status([](Input& in) { in.jacobian(7, 2) = std::numeric_limits<double>::infinity(); }, invalid, "jacobian");
+    expect_status([](Input& in) { in.jacobian_rate_qdot(1) = nan; }, invalid, "jacobian_rate_qdot");
+    expect_status([](Input& in) { in.positions(5) = nan; }, invalid, "positions");
+    expect_status([](Input& in) { in.velocities(5) = nan; }, invalid, "velocities");
+    expect_status([](Input& in) { in.object.pose.position(1) = nan; }, invalid, "object.pose.position");
+    expect_status([](Input& in) { in.object.pose.orientation.coeffs().setZero(); }, invalid, "object.pose.orientation");
+    expect_status([](Input& in) { in.object.twist(4) = nan; }, invalid, "object.twist");
+    expect_status([](Input& in) { in.object_acceleration(0) = nan; }, invalid, "object_acceleration");
+    expect_status([](Input& in) { in.desired_pose.position(2) = nan; }, invalid, "desired_pose.position");
+    expect_status([](Input& in) { in.desired_pose.orientation.coeffs() *= 2.0; }, invalid, "desired_pose.orientation");
+    expect_status([](Input& in) { in.desired_twist(0) = nan; }, invalid, "desired_twist");
+    expect_status([](Input& in) { in.desired_acceleration(0) = nan; }, invalid, "desired_acceleration");
+    expect_status([](Input& in) { in.posture(11) = nan; }, invalid, "posture");
+
+    const Model model(valid_parameters());
+    Data data(model);
+    Input in = valid_input();
+    in.bias(2) = nan;
+    EXPECT_TRUE(coopdyn::controller_tick(model, data, in).isZero());
+}
+
+TEST(ControllerTick, AnInertiaThatIsNotPositiveDefiniteIsAStatus)
+{
+    expect_status([](Input& in) { in.inertia(6, 6) = -1.0; }, coopdyn::ControlStatus::invalid_input,
+                  "inertia (not positive definite)");
+    expect_status([](Input& in) { in.inertia.row(3).setZero(), in.inertia.col(3).setZero(); },
+                  coopdyn::ControlStatus::invalid_input, "inertia (not positive definite)");
+}
+
+TEST(ControllerTick, ASingularArmIsAStatusAndTheTorqueCompensatesTheBias)
+{
+    const Model model(valid_parameters());
+    Data data(model);
+    Input in = valid_input();
+    in.jacobian.row(8).setZero();  // arm 2 lost a direction
+    const VectorXd tau = coopdyn::controller_tick(model, data, in);
+    EXPECT_EQ(data.status, coopdyn::ControlStatus::singular);
+    EXPECT_NE(data.dynamics.status, coopdyn::ProjectionStatus::ok);  // here: the object cannot move along it
+    EXPECT_EQ(tau, in.bias);
+}
+
+TEST(ControllerTickDeathTest, DataOrInputOfAnotherSizeStopsWithAMessage)
+{
+    const Model model(valid_parameters());
+    Data data(model);
+    Parameters three = valid_parameters();
+    three.joints = 18;
+    three.contacts.push_back(three.contacts[0]);
+    three.contacts[2].frame.position = Vector3d(0, 0.15, 0);
+    three.posture_stiffness = three.posture_damping = VectorXd::Ones(18);
+    const Model other(three);
+    Data other_data(other);
+    EXPECT_DEATH(coopdyn::controller_tick(model, other_data, valid_input()), "another controller model");
+    Input wrong(2, 13);
+    EXPECT_DEATH(coopdyn::controller_tick(model, data, wrong), "another controller model");
+}
+
+}  // namespace
