@@ -229,7 +229,7 @@ LiteralTick literal_tick(const Parameters& p, const DynamicInput& in)
     const MatrixXd G_pinv = G.transpose() * A_inv;
     const MatrixXd N = I_m - G_pinv * G;
 
-    // L(13), L(4)-(6): Jc = N J, Jx = (G G^T)^-1 G J, P = I - Jc^+ Jc, Mc = P M + I - P,
+    // L(13), L(4), L(15), L(26): Jc = N J, Jx = (G G^T)^-1 G J, P = I - Jc^+ Jc, Mc = P M + I - P,
     // Lambda_c = (Jx Mc^-1 P Jx^T)^-1.
     const MatrixXd Jc = N * J;
     const MatrixXd Jx = A_inv * G * J;

@@ -1,5 +1,5 @@
 // Tests of the projected dynamics (include/coopdyn/control/projected_dynamics.hpp), Lin et al.
-// L(4)-(6), (13), (15) with errata E10. References the code was not derived from:
+// L(4), (13), (15), (26) with errata E10. References the code was not derived from:
 //  - the printed formulas evaluated densely with SVD pseudo-inverses (arm_systems.hpp);
 //  - central finite differences of Jx, Jc and P along an explicit motion (the object rotating with
 //    the angular velocity that qdot gives it, J(t) = J + t Jdot);
@@ -43,7 +43,7 @@ double relative(const MatrixXd& value, const MatrixXd& reference)
     return (value - reference).norm() / std::max(reference.norm(), 1e-300);
 }
 
-/// The printed L(4)-(6) with SVD pseudo-inverses.
+/// The printed L(4), (15), (26) with SVD pseudo-inverses.
 struct LiteralProjection {
     MatrixXd P, Mc, Lambda;
 };

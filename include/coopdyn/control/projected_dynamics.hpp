@@ -1,7 +1,7 @@
 /// \file
 /// \brief Projected inverse dynamics of K arms holding one object (the second paper, Lin et al.):
 /// the grasp's constraint and object Jacobians, an orthonormal basis of the internal wrenches, and
-/// the projected dynamics L(4)-(6), (13), (15) with their exact derivative terms; docs/control.md.
+/// the projected dynamics L(4), (13), (15), (26) with their exact derivative terms; docs/control.md.
 ///
 /// Inputs come from the user's kinematics/dynamics library: the joint inertia M (Q x Q, SPD), the
 /// bias h (Q; Coriolis, centrifugal, gravity), the stacked contact Jacobians J (6K x Q; rows
@@ -12,15 +12,15 @@
 ///     Jc = N J = J - G^T Jx                    constraint Jacobian L(13), rank 6K - 6
 ///     Jx = (G G^T)^-1 G J                      object Jacobian, xdot_o = Jx qdot
 ///     P  = I - Jc^+ Jc                         projector L(4)
-///     Mc = P M + I - P                         L(5)
-///     Lambda_c = (Jx Mc^-1 P Jx^T)^-1          L(6)
+///     Mc = P M + I - P                         L(26), Appendix A
+///     Lambda_c = (Jx Mc^-1 P Jx^T)^-1          below L(15)
 ///     hc = Lambda_c (Jx Mc^-1 (P h - Pdot qdot) - Jxdot qdot)       L(15): Lambda_c xdd_o + hc = F + F_x
 ///
 /// Errata E10: Jc has rank 6K - 6, not 6K. The library never inverts Jc Jc^T: with B (6K x 6(K-1))
 /// an orthonormal basis of null(G), N = B B^T and Jc = B Jr with Jr = B^T J of full row rank (when
 /// J has), so Jc^+ = Jr^T (Jr Jr^T)^-1 B^T. Jr Jr^T is never formed either: a Householder QR
 /// Jr^T = Q1 R gives Jr Jr^T = R^T R, Jc^+ = Q1 R^-T B^T and P = I - Q1 Q1^T, and the rest of Q
-/// (a basis Q2 of the motions the grasp allows) turns Mc^-1 and L(6) into a Cholesky factorisation
+/// (a basis Q2 of the motions the grasp allows) turns Mc^-1 and Lambda_c into a Cholesky factorisation
 /// of the (Q - 6K + 6) square matrix Q2^T M Q2 (ProjectedDynamics; docs/control.md).
 #pragma once
 
@@ -326,7 +326,7 @@ constexpr int free_joint_dimension(int joints, int arms) noexcept
 ///     [Q1 Q2]^T Mc [Q1 Q2] = [[I, 0], [Q2^T M Q1, M22]],   M22 = Q2^T M Q2 (SPD),
 ///
 /// block lower triangular: Mc^-1 needs only the Cholesky factor M22 = L22 L22^T, and
-/// Jx Mc^-1 P Jx^T = E^T E with E = L22^-1 Q2^T Jx^T (L(6) as a Gram matrix, symmetric positive
+/// Jx Mc^-1 P Jx^T = E^T E with E = L22^-1 Q2^T Jx^T (Lambda_c^-1 as a Gram matrix, symmetric positive
 /// semi-definite by construction).
 template <typename ScalarType, int ArmsAtCompileTime, int JointsAtCompileTime> class ProjectedDynamics {
 public:
@@ -399,8 +399,8 @@ public:
     Eigen::Matrix<Scalar, Stack, Joints> constraint_jacobian;  ///< Jc, 6K x Q, L(13)
     Eigen::Matrix<Scalar, Stack, Internal> internal_basis;  ///< B, 6K x 6(K-1), orthonormal, G B = 0
     JointMatrix projector;                                  ///< P, L(4)
-    JointMatrix constrained_inertia;                        ///< Mc = P M + I - P, L(5)
-    Matrix6<Scalar> task_inertia;                           ///< Lambda_c, L(6)
+    JointMatrix constrained_inertia;                        ///< Mc = P M + I - P, L(26)
+    Matrix6<Scalar> task_inertia;                           ///< Lambda_c, L(15)
     Vector6<Scalar> task_bias;                              ///< hc, L(15)
     Vector6<Scalar> object_twist;                           ///< Jx qdot
     Vector6<Scalar> object_jacobian_rate_qdot;              ///< Jxdot qdot
@@ -558,7 +558,7 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::compute(
         projector.noalias() -= q1.lazyProduct(q1.transpose());
     }
 
-    // Mc = P M + I - P = Q2 (Q2^T M) + I - P (L(5)); M22 = (Q2^T M) Q2 (the class comment).
+    // Mc = P M + I - P = Q2 (Q2^T M) + I - P (L(26)); M22 = (Q2^T M) Q2 (the class comment).
     free_rows_inertia_.noalias() = q2.transpose().lazyProduct(M);
     constrained_inertia = -projector;
     constrained_inertia.diagonal().array() += Scalar(1);
@@ -570,7 +570,7 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::compute(
         return status;
     }
 
-    // Lambda_c^-1 = Jx Mc^-1 P Jx^T = E^T E, E = L22^-1 Q2^T Jx^T (L(6)).
+    // Lambda_c^-1 = Jx Mc^-1 P Jx^T = E^T E, E = L22^-1 Q2^T Jx^T (L(15)).
     task_reduced_.noalias() = q2.transpose().lazyProduct(object_jacobian.transpose());
     detail::solve_columns(free_inertia_factor_.matrixL(), task_reduced_);
     task_factor_.compute(task_reduced_.transpose().lazyProduct(task_reduced_));
@@ -655,7 +655,7 @@ void ProjectedDynamics<Scalar, Arms, Joints>::constraint_transpose_pseudo_invers
     out.noalias() = internal_basis * reduced;
 }
 
-/// \brief Projected dynamics L(4)-(6), (15) at one configuration, by value (allocates for dynamic
+/// \brief Projected dynamics L(4), (15), (26) at one configuration, by value (allocates for dynamic
 /// sizes; use a ProjectedDynamics workspace in a control loop). Arguments as in
 /// ProjectedDynamics::compute; check `.status`.
 template <typename DerivedM, typename DerivedH, typename DerivedJ, typename DerivedJdotQdot, typename DerivedQdot,
