@@ -44,7 +44,7 @@
 #include <coopdyn/control/friction.hpp>
 #include <coopdyn/control/qp_solver.hpp>
 
-#include "arm_systems.hpp"
+#include "controller_cases.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -67,70 +67,14 @@ using Parameters = coopdyn::ControllerParameters<double>;
 using DynamicInput = coopdyn::ControllerInput<double, Dynamic, Dynamic>;
 using Quaterniond = Eigen::Quaterniond;
 
-// ---- the seeded case (as tests/control/test_controller.cpp's random_case) ----------------------
+// ---- the seeded case (tests/common/controller_cases.hpp) ---------------------------------------
 
-coopdyn::ContactFriction<double> palm_friction()
-{
-    coopdyn::ContactFriction<double> friction;
-    friction.friction_coefficient = 0.8;
-    friction.torsional_coefficient = 0.03;
-    friction.patch_half_length_x = 0.04;
-    friction.patch_half_length_y = 0.05;
-    friction.minimum_normal_force = 5.0;
-    return friction;
-}
-
-/// A rotation whose z axis is `normal`, turned about it by `spin`.
-Quaterniond frame_with_normal(const Vector3d& normal, double spin)
-{
-    const Quaterniond align = Quaterniond::FromTwoVectors(Vector3d::UnitZ(), normal);
-    return (align * Quaterniond(Eigen::AngleAxisd(spin, Vector3d::UnitZ()))).normalized();
-}
-
-struct Case {
-    Parameters parameters;
-    DynamicInput input{2, 1};
-};
+using Case = coopdyn_test::ControllerCase;
 
 Case random_case(Index arms, bool torso, unsigned seed)
 {
     Rng rng(seed);
-    const coopdyn_test::JointSpaceSystem s = coopdyn_test::random_joint_space_system(arms, torso, rng);
-    Case c;
-    const Quaterniond object_orientation = coopdyn_test::random_unit_quaternion(rng);
-    const Matrix3d R_o = object_orientation.toRotationMatrix();
-    Parameters& p = c.parameters;
-    p.joints = s.joints;
-    for (Index i = 0; i < arms; ++i) {
-        coopdyn::ContactPoint<double> contact;
-        const Vector3d body_offset = R_o.transpose() * s.r.col(i);
-        contact.frame = {body_offset, frame_with_normal(-body_offset.normalized(), coopdyn_test::uniform(rng, 0, 3))};
-        contact.friction = palm_friction();
-        p.contacts.push_back(contact);
-    }
-    p.stiffness = coopdyn_test::random_spd(6, rng, 300.0, 0.2);
-    p.damping = coopdyn_test::random_spd(6, rng, 40.0, 0.2);
-    p.posture_stiffness = coopdyn_test::random_vector(s.joints, rng, 5.0, 30.0);
-    p.posture_damping = coopdyn_test::random_vector(s.joints, rng, 1.0, 5.0);
-
-    DynamicInput& in = c.input;
-    in = DynamicInput(arms, s.joints);
-    in.inertia = s.M;
-    in.bias = s.h;
-    in.jacobian = s.J;
-    in.jacobian_rate_qdot = s.Jdot * s.qdot;
-    in.positions = coopdyn_test::random_vector(s.joints, rng);
-    in.velocities = s.qdot;
-    in.posture = coopdyn_test::random_vector(s.joints, rng);
-    in.object.pose = {Vector3d(coopdyn_test::random_vector(rng)), object_orientation};
-    in.object.twist = coopdyn_test::literal_grasp(s.r, s.J).Jx * s.qdot;
-    in.object_acceleration = coopdyn_test::random_vector6(rng, 2.0);
-    in.desired_pose = {Vector3d(in.object.pose.position + 0.05 * coopdyn_test::random_vector(rng)),
-                       (object_orientation * coopdyn_test::axis_angle(0.1, coopdyn_test::random_vector(rng).normalized()))
-                           .normalized()};
-    in.desired_twist = coopdyn_test::random_vector6(rng, 0.3);
-    in.desired_acceleration = coopdyn_test::random_vector6(rng, 1.0);
-    return c;
+    return coopdyn_test::random_controller_case(arms, torso, rng);
 }
 
 /// The first case from seed 2024 on whose tick (dynamic sizes, default parameters) is ok.
@@ -146,23 +90,6 @@ Case feasible_case(Index arms, bool torso)
         }
     }
     return random_case(arms, torso, 2024);  // not ok: the benchmark reports the error
-}
-
-template <int Arms, int Joints>
-void copy_input(const DynamicInput& from, coopdyn::ControllerInput<double, Arms, Joints>& to)
-{
-    to.inertia = from.inertia;
-    to.bias = from.bias;
-    to.jacobian = from.jacobian;
-    to.jacobian_rate_qdot = from.jacobian_rate_qdot;
-    to.positions = from.positions;
-    to.velocities = from.velocities;
-    to.object = from.object;
-    to.object_acceleration = from.object_acceleration;
-    to.desired_pose = from.desired_pose;
-    to.desired_twist = from.desired_twist;
-    to.desired_acceleration = from.desired_acceleration;
-    to.posture = from.posture;
 }
 
 enum class Variant { warm, cold, paper_objective };
@@ -181,8 +108,7 @@ void BM_ControllerTick(benchmark::State& state)
     }
     const coopdyn::ControllerModel<double, K, Q> model(c.parameters);
     coopdyn::ControllerData<double, K, Q> data(model);
-    coopdyn::ControllerInput<double, K, Q> input(model);
-    copy_input(c.input, input);
+    const coopdyn::ControllerInput<double, K, Q> input(c.input);
     coopdyn::controller_tick(model, data, input);  // the warm start's first active set
     for (auto _ : state) {
         const auto& tau = coopdyn::controller_tick(model, data, input);

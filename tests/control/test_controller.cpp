@@ -12,7 +12,7 @@
 
 #include "coopdyn/control/controller.hpp"
 
-#include "arm_systems.hpp"
+#include "controller_cases.hpp"
 
 #include <gtest/gtest.h>
 
@@ -40,76 +40,11 @@ using Input = coopdyn::ControllerInput<double, Dynamic, Dynamic>;
 using Matrix3d = Eigen::Matrix3d;
 using Quaterniond = Eigen::Quaterniond;
 
-coopdyn::ContactFriction<double> palm_friction()
-{
-    coopdyn::ContactFriction<double> friction;
-    friction.friction_coefficient = 0.8;
-    friction.torsional_coefficient = 0.03;
-    friction.patch_half_length_x = 0.04;
-    friction.patch_half_length_y = 0.05;
-    friction.minimum_normal_force = 5.0;
-    return friction;
-}
+using Case = coopdyn_test::ControllerCase;
+using coopdyn_test::frame_with_normal;
+using coopdyn_test::palm_friction;
 
-/// A rotation whose z axis is `normal` (the contact frame of an inward normal), turned about it by
-/// `spin`.
-Quaterniond frame_with_normal(const Vector3d& normal, double spin)
-{
-    const Quaterniond align = Quaterniond::FromTwoVectors(Vector3d::UnitZ(), normal);
-    return (align * Quaterniond(Eigen::AngleAxisd(spin, Vector3d::UnitZ()))).normalized();
-}
-
-/// A controller and an input for a random joint-space system: the object at a random pose, each
-/// contact frame's normal pointing at the object's centre, random gains, a random desired motion.
-struct Case {
-    JointSpaceSystem s;
-    Parameters parameters;
-    Input input;
-};
-
-/// The controller and input for a given system (see Case).
-Case make_case(const JointSpaceSystem& system, Rng& rng)
-{
-    const Index arms = system.arms;
-    Case c{system, Parameters{}, Input(arms, 1)};
-    const JointSpaceSystem& s = c.s;
-    const Quaterniond object_orientation = coopdyn_test::random_unit_quaternion(rng);
-    const Matrix3d R_o = object_orientation.toRotationMatrix();
-    Parameters& p = c.parameters;
-    p.joints = s.joints;
-    for (Index i = 0; i < arms; ++i) {
-        coopdyn::ContactPoint<double> contact;
-        const Vector3d body_offset = R_o.transpose() * s.r.col(i);
-        contact.frame = {body_offset, frame_with_normal(-body_offset.normalized(), coopdyn_test::uniform(rng, 0, 3))};
-        contact.friction = palm_friction();
-        p.contacts.push_back(contact);
-    }
-    p.stiffness = coopdyn_test::random_spd(6, rng, 300.0, 0.2);
-    p.damping = coopdyn_test::random_spd(6, rng, 40.0, 0.2);
-    p.posture_stiffness = random_vector(s.joints, rng, 5.0, 30.0);
-    p.posture_damping = random_vector(s.joints, rng, 1.0, 5.0);
-
-    Input& in = c.input;
-    in = Input(arms, s.joints);
-    in.inertia = s.M;
-    in.bias = s.h;
-    in.jacobian = s.J;
-    in.jacobian_rate_qdot = s.Jdot * s.qdot;
-    in.positions = random_vector(s.joints, rng);
-    in.velocities = s.qdot;
-    in.posture = random_vector(s.joints, rng);
-    in.object.pose = {Vector3d(random_vector(rng)), object_orientation};
-    const coopdyn_test::LiteralGrasp grasp = coopdyn_test::literal_grasp(s.r, s.J);
-    in.object.twist = grasp.Jx * s.qdot;
-    in.object_acceleration = coopdyn_test::random_vector6(rng, 2.0);
-    in.desired_pose = {Vector3d(in.object.pose.position + 0.05 * random_vector(rng)),
-                       (object_orientation * coopdyn_test::axis_angle(0.1, random_vector(rng).normalized())).normalized()};
-    in.desired_twist = coopdyn_test::random_vector6(rng, 0.3);
-    in.desired_acceleration = coopdyn_test::random_vector6(rng, 1.0);
-    return c;
-}
-
-Case random_case(Index arms, bool torso, Rng& rng) { return make_case(random_joint_space_system(arms, torso, rng), rng); }
+Case random_case(Index arms, bool torso, Rng& rng) { return coopdyn_test::random_controller_case(arms, torso, rng); }
 
 double relative(const VectorXd& a, const VectorXd& b) { return (a - b).norm() / std::max(b.norm(), 1e-300); }
 
@@ -305,15 +240,12 @@ TEST(ContactQp, ATorqueAboutTheNormalsBindsTheTorsionRow)
     }
 }
 
-TEST(ContactQp, ALoadNoSqueezeCanHoldGetsTheLeastViolatingSqueeze)
+/// Both palms on the face x = -a, pushing along +x, on free 6-DOF hands (J = I); the object
+/// pulled away from them along +x by `pull` (its pose error times the stiffness).
+TwoPalms pulled_away_from_one_face(double pull, double f_min)
 {
-    // Both palms on the face x = -a, pushing along +x; the object is pulled away from them along +x
-    // by F = 40 N. The hands' net force must be -F_x, so f_1z + f_2z = -F: no f_z >= f_min exists.
-    // The least violation of the worst row is that of the unilateral rows at the equal split,
-    // f_min + F/2 (the other rows' normalised violations are smaller).
-    const double pull = 40.0;
-    const double f_min = 3.0;
-    Parameters p;
+    TwoPalms t;
+    Parameters& p = t.parameters;
     p.joints = 12;
     coopdyn::ContactPoint<double> a, b;
     const Quaterniond normal_x = frame_with_normal(Vector3d::UnitX(), 0.0);
@@ -323,11 +255,23 @@ TEST(ContactQp, ALoadNoSqueezeCanHoldGetsTheLeastViolatingSqueeze)
     p.contacts = {a, b};
     p.stiffness = stiffness * coopdyn_test::Matrix6d::Identity();
     p.posture_stiffness = p.posture_damping = VectorXd::Zero(12);
-    Input in(2, 12);
-    in.inertia = MatrixXd::Identity(12, 12);
-    in.jacobian = MatrixXd::Identity(12, 12);
-    in.object.pose = {Vector3d(pull / stiffness, 0, 0), Quaterniond::Identity()};
-    const Model model(p);
+    t.input.inertia = MatrixXd::Identity(12, 12);
+    t.input.jacobian = MatrixXd::Identity(12, 12);
+    t.input.object.pose = {Vector3d(pull / stiffness, 0, 0), Quaterniond::Identity()};
+    return t;
+}
+
+TEST(ContactQp, ALoadNoSqueezeCanHoldGetsTheLeastViolatingSqueeze)
+{
+    // Both palms on the face x = -a, pushing along +x; the object is pulled away from them along +x
+    // by F = 40 N. The hands' net force must be -F_x, so f_1z + f_2z = -F: no f_z >= f_min exists.
+    // The least violation of the worst row is that of the unilateral rows at the equal split,
+    // f_min + F/2 (the other rows' normalised violations are smaller).
+    const double pull = 40.0;
+    const double f_min = 3.0;
+    const TwoPalms t = pulled_away_from_one_face(pull, f_min);
+    const Input& in = t.input;
+    const Model model(t.parameters);
     Data data(model);
     const VectorXd tau = coopdyn::controller_tick(model, data, in);
     EXPECT_EQ(data.status, coopdyn::ControlStatus::friction_infeasible);
@@ -381,7 +325,7 @@ TEST(ContactQp, TheMomentWeightKeepsTheCentreOfPressureCentral)
         s.r.col(1) = -s.r.col(0);
         s.qdot.setZero();
         s.h.setZero();  // weightless arms: the object's weight is the only load
-        Case c = make_case(s, rng);
+        Case c = coopdyn_test::make_controller_case(s, rng);
         c.parameters.stiffness = 500.0 * coopdyn_test::Matrix6d::Identity();
         c.input.object.twist.setZero();
         c.input.object_acceleration.setZero();
@@ -451,19 +395,7 @@ TEST(Controller, FixedSizesAgreeWithDynamicAndNoTickAllocates)
     using FixedInput = coopdyn::ControllerInput<double, 2, 14>;
     const FixedModel fixed_model(c.parameters);
     coopdyn::ControllerData<double, 2, 14> fixed(fixed_model);
-    FixedInput fixed_input(fixed_model);
-    fixed_input.inertia = c.input.inertia;
-    fixed_input.bias = c.input.bias;
-    fixed_input.jacobian = c.input.jacobian;
-    fixed_input.jacobian_rate_qdot = c.input.jacobian_rate_qdot;
-    fixed_input.positions = c.input.positions;
-    fixed_input.velocities = c.input.velocities;
-    fixed_input.posture = c.input.posture;
-    fixed_input.object = c.input.object;
-    fixed_input.object_acceleration = c.input.object_acceleration;
-    fixed_input.desired_pose = c.input.desired_pose;
-    fixed_input.desired_twist = c.input.desired_twist;
-    fixed_input.desired_acceleration = c.input.desired_acceleration;
+    const FixedInput fixed_input(c.input);
     const Model dynamic_model(c.parameters);
     Data dynamic(dynamic_model);
     static_assert(noexcept(coopdyn::controller_tick(fixed_model, fixed, fixed_input)), "per tick");
@@ -483,23 +415,10 @@ TEST(Controller, FixedSizesAgreeWithDynamicAndNoTickAllocates)
 
 TEST(Controller, TheFallbackAllocatesNothingEither)
 {
-    // The infeasible pull of ALoadNoSqueezeCanHold..., dynamic sizes.
-    Parameters p;
-    p.joints = 12;
-    coopdyn::ContactPoint<double> a, b;
-    const Quaterniond normal_x = frame_with_normal(Vector3d::UnitX(), 0.0);
-    a.frame = {Vector3d(-half_width, 0.1, 0), normal_x};
-    b.frame = {Vector3d(-half_width, -0.1, 0), normal_x};
-    a.friction = b.friction = rubber(1.0);
-    p.contacts = {a, b};
-    p.stiffness = stiffness * coopdyn_test::Matrix6d::Identity();
-    p.posture_stiffness = p.posture_damping = VectorXd::Zero(12);
-    Input in(2, 12);
-    in.inertia = MatrixXd::Identity(12, 12);
-    in.jacobian = MatrixXd::Identity(12, 12);
-    in.object.pose = {Vector3d(0.05, 0, 0), Quaterniond::Identity()};
-    const Model model(p);
+    const TwoPalms t = pulled_away_from_one_face(50.0, 1.0);  // dynamic sizes
+    const Model model(t.parameters);
     Data data(model);
+    const Input& in = t.input;
     const auto counts = allocation_counter::count_allocations([&] { coopdyn::controller_tick(model, data, in); });
     EXPECT_EQ(data.status, coopdyn::ControlStatus::friction_infeasible);
     EXPECT_EQ(counts.operator_new + counts.eigen, 0);

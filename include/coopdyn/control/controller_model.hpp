@@ -26,6 +26,7 @@
 #include "coopdyn/spatial/pose.hpp"
 
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace coopdyn {
@@ -282,6 +283,25 @@ struct ControllerInput {
     template <int Edges>
     explicit ControllerInput(const ControllerModel<Scalar, Arms, Joints, Edges>& model)
         : ControllerInput(model.arms(), model.joints())
+    {
+    }
+    /// The same input with other compile-time sizes (e.g. a Dynamic input into a fixed-size one;
+    /// the run-time sizes must agree). Allocates for dynamic sizes: not for the tick.
+    template <int OtherArms, int OtherJoints,
+              std::enable_if_t<OtherArms != Arms || OtherJoints != Joints, int> = 0>
+    explicit ControllerInput(const ControllerInput<Scalar, OtherArms, OtherJoints>& other)
+        : inertia(other.inertia),
+          bias(other.bias),
+          jacobian(other.jacobian),
+          jacobian_rate_qdot(other.jacobian_rate_qdot),
+          positions(other.positions),
+          velocities(other.velocities),
+          object(other.object),
+          object_acceleration(other.object_acceleration),
+          desired_pose(other.desired_pose),
+          desired_twist(other.desired_twist),
+          desired_acceleration(other.desired_acceleration),
+          posture(other.posture)
     {
     }
 
