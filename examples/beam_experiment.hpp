@@ -9,6 +9,7 @@
 // the object. The simulation is coopdyn's Simulator (full model of docs/dynamics.md, RK4).
 #pragma once
 
+#include "common/progress.hpp"
 #include "scenario.hpp"
 
 #include <coopdyn/coopdyn.hpp>
@@ -311,41 +312,7 @@ struct ExperimentResult {
     double identification_seconds = 0.0;  ///< wall clock of the identification
 };
 
-/// Progress line on stderr for runs longer than a few seconds: silent during the first 2 s of
-/// wall clock, then updated at most 4 times a second.
-class Progress {
-public:
-    explicit Progress(bool enabled) : enabled_(enabled), start_(Clock::now()), last_(start_) {}
-    void update(const std::string& label, double fraction)
-    {
-        if (!enabled_) {
-            return;
-        }
-        const auto now = Clock::now();
-        if (seconds(start_, now) < 2.0 || (shown_ && seconds(last_, now) < 0.25)) {
-            return;
-        }
-        std::fprintf(stderr, "\r%-40s %5.1f %%   ", label.c_str(), 100.0 * fraction);
-        std::fflush(stderr);
-        last_ = now;
-        shown_ = true;
-    }
-    void finish()
-    {
-        if (shown_) {
-            std::fprintf(stderr, "\r%-52s\r", "");
-            std::fflush(stderr);
-            shown_ = false;
-        }
-    }
-
-private:
-    using Clock = std::chrono::steady_clock;
-    static double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-    bool enabled_;
-    bool shown_ = false;
-    Clock::time_point start_, last_;
-};
+using example_common::Progress;  // examples/common/progress.hpp
 
 /// Runs one experiment on `model` (built from `scenario`): simulation, sensor model,
 /// identification from the logged (measured) wrench and displacement, and the identified

@@ -3,6 +3,8 @@
 #pragma once
 
 #include "beam_experiment.hpp"
+#include "common/csv_table.hpp"
+#include "common/plotting.hpp"
 #include "scenario.hpp"
 
 #include <array>
@@ -270,66 +272,7 @@ inline std::vector<std::string> log_columns(Eigen::Index arms)
     return columns;
 }
 
-class CsvWriter {
-public:
-    explicit CsvWriter(const std::filesystem::path& path) : path_(path), file_(path, std::ios::binary)
-    {
-        if (!file_) {
-            throw std::runtime_error("cannot open " + path.string() + " for writing");
-        }
-    }
-    void text(const std::string& value)
-    {
-        separate();
-        line_ += value;
-    }
-    void number(double value)
-    {
-        separate();
-        if (std::isnan(value)) {
-            line_ += "nan";
-            return;
-        }
-        char buffer[32];
-        const auto written = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 10);
-        line_.append(buffer, written.ptr);
-    }
-    void optional(const std::optional<double>& value)
-    {
-        if (value) {
-            number(*value);
-        } else {
-            text("");
-        }
-    }
-    void end_row()
-    {
-        line_ += '\n';
-        file_ << line_;
-        line_.clear();
-        first_ = true;
-    }
-    void close()
-    {
-        file_.close();
-        if (!file_) {
-            throw std::runtime_error("error writing " + path_.string());
-        }
-    }
-
-private:
-    void separate()
-    {
-        if (!first_) {
-            line_ += ',';
-        }
-        first_ = false;
-    }
-    std::filesystem::path path_;
-    std::ofstream file_;
-    std::string line_;
-    bool first_ = true;
-};
+using example_common::CsvWriter;
 
 inline void write_log_csv(const std::filesystem::path& path, const ExperimentLog& log)
 {
@@ -410,39 +353,7 @@ inline void write_summary_csv(const std::filesystem::path& path, const Scenario&
 // ---------------------------------------------------------------------------------------------
 // Plots (gnuplot)
 
-/// Absolute path of gnuplot on PATH, or empty.
-inline std::filesystem::path find_gnuplot()
-{
-    const char* path = std::getenv("PATH");
-    if (path == nullptr) {
-        return {};
-    }
-    std::string list = path;
-    std::size_t start = 0;
-    while (start <= list.size()) {
-        const std::size_t end = std::min(list.find(':', start), list.size());
-        const std::filesystem::path candidate =
-            std::filesystem::path(end > start ? list.substr(start, end - start) : ".") / "gnuplot";
-        std::error_code error;
-        const auto status = std::filesystem::status(candidate, error);
-        if (!error && std::filesystem::is_regular_file(status) &&
-            (status.permissions() & std::filesystem::perms::others_exec) != std::filesystem::perms::none) {
-            return candidate;
-        }
-        start = end + 1;
-    }
-    return {};
-}
-
-/// Single-quoted for /bin/sh.
-inline std::string shell_quote(const std::string& text)
-{
-    std::string result = "'";
-    for (const char c : text) {
-        result += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    }
-    return result + "'";
-}
+// Finding and running gnuplot: examples/common/plotting.hpp.
 
 /// gnuplot script for one experiment: for each excited axis, the applied (measured) wrench and
 /// the measured and model-predicted displacement (mm or mrad), in the style of Figs. 5-7.

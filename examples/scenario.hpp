@@ -14,6 +14,8 @@
 //   scenarios/beam.json: arms[0].end_effector.mass: must be positive and finite, got -10
 #pragma once
 
+#include "common/json_reader.hpp"
+
 #include <coopdyn/coopdyn.hpp>
 
 #include <nlohmann/json.hpp>
@@ -31,25 +33,9 @@
 
 namespace beam_example {
 
-/// A scenario file is malformed or describes an invalid set-up. what() is
-/// "<source>: <json path>: <problem>".
-class ScenarioError : public std::runtime_error {
-public:
-    ScenarioError(const std::string& source, const std::string& path, const std::string& problem)
-        : std::runtime_error(source + ": " + (path.empty() ? std::string("(top level)") : path) + ": " + problem),
-          path_(path),
-          problem_(problem)
-    {
-    }
-    /// JSON path of the offending field, e.g. "arms[1].end_effector.mass".
-    const std::string& path() const noexcept { return path_; }
-    /// What is wrong with it.
-    const std::string& problem() const noexcept { return problem_; }
-
-private:
-    std::string path_;
-    std::string problem_;
-};
+/// A scenario file is malformed or describes an invalid set-up: "<source>: <json path>:
+/// <problem>" (the shared loader's error type, examples/common/json_reader.hpp).
+using example_common::ScenarioError;
 
 /// Reference values of one experiment from the paper (one entry per identified axis: 1 for the
 /// single-axis experiments, 6 for SE(3) in the order x, y, z, rot x, rot y, rot z).
@@ -96,248 +82,81 @@ struct Scenario {
 
 namespace detail {
 
-using nlohmann::json;
+using example_common::index_path;
+using example_common::join_path;
+using example_common::json;
+using Reader = example_common::JsonReader;
 
-inline std::string type_name(const json& value)
+inline coopdyn::Pose<double> pose(const Reader& reader, const json& object, const std::string& path)
 {
-    if (value.is_number()) {
-        return "number";
+    coopdyn::Pose<double> result;
+    if (const json* position = reader.optional(object, "position")) {
+        result.position = reader.vector3(*position, join_path(path, "position"));
     }
-    if (value.is_boolean()) {
-        return "boolean";
+    if (const json* orientation = reader.optional(object, "orientation")) {
+        result.orientation = reader.quaternion(*orientation, join_path(path, "orientation"));
     }
-    return value.type_name();  // "null", "string", "array", "object"
+    return result;
 }
 
-inline std::string join_path(const std::string& path, const std::string& key)
+inline ImpedanceValues impedance_values(const Reader& reader, const json& value, const std::string& path,
+                                        std::size_t axes)
 {
-    return path.empty() ? key : path + "." + key;
+    reader.only_keys(value, path, {"inertia", "damping", "stiffness"});
+    ImpedanceValues result;
+    result.inertia = reader.numbers(reader.required(value, path, "inertia"), join_path(path, "inertia"), axes);
+    result.damping = reader.numbers(reader.required(value, path, "damping"), join_path(path, "damping"), axes);
+    result.stiffness = reader.numbers(reader.required(value, path, "stiffness"), join_path(path, "stiffness"), axes);
+    return result;
 }
 
-inline std::string index_path(const std::string& path, std::size_t index)
+inline PaperExperiment paper_experiment(const Reader& reader, const json& value, const std::string& path,
+                                        std::size_t axes)
 {
-    return path + "[" + std::to_string(index) + "]";
+    reader.only_keys(value, path, {"nominal", "identified", "mean_squared_output_error"});
+    PaperExperiment result;
+    if (const json* nominal = reader.optional(value, "nominal")) {
+        result.nominal = impedance_values(reader, *nominal, join_path(path, "nominal"), axes);
+    }
+    if (const json* identified = reader.optional(value, "identified")) {
+        result.identified = impedance_values(reader, *identified, join_path(path, "identified"), axes);
+    }
+    if (const json* error = reader.optional(value, "mean_squared_output_error")) {
+        result.mean_squared_output_error = reader.positive(*error, join_path(path, "mean_squared_output_error"));
+    }
+    return result;
 }
 
-/// Walks a parsed document, naming every error by its JSON path.
-class Reader {
-public:
-    explicit Reader(std::string source) : source_(std::move(source)) {}
-
-    [[noreturn]] void fail(const std::string& path, const std::string& problem) const
-    {
-        throw ScenarioError(source_, path, problem);
-    }
-
-    void expect_object(const json& value, const std::string& path) const
-    {
-        if (!value.is_object()) {
-            fail(path, "expected an object, got " + type_name(value));
-        }
-    }
-
-    /// Refuses keys outside `allowed` (a misspelt optional field would otherwise be ignored).
-    void only_keys(const json& object, const std::string& path, std::initializer_list<const char*> allowed) const
-    {
-        for (auto it = object.begin(); it != object.end(); ++it) {
-            bool known = false;
-            for (const char* key : allowed) {
-                known = known || it.key() == key;
+/// Runs a coopdyn validation and turns its coopdyn::Error into a ScenarioError at the JSON path
+/// of the refused parameter, read from the error's fields. The file's field names are coopdyn's
+/// parameter names, so the mapping is mechanical: component "object" -> object.<p>; an arm's
+/// parameter -> arms[i].end_effector.<p> (arms[i].<p> for grasp_body.*,
+/// load_distribution.<p>[i] for the weights); "load distribution" -> load_distribution.<p>;
+/// anything else (the model's own parameters) -> <p>.
+template <typename Check> void physical(const Reader& reader, Check&& check)
+{
+    try {
+        check();
+    } catch (const coopdyn::Error& error) {
+        const std::string& parameter = error.parameter();
+        std::string path = parameter;
+        if (error.has_arm()) {
+            const std::string index = std::to_string(error.arm());
+            if (error.component() == "load distribution") {
+                path = "load_distribution." + parameter + "[" + index + "]";
+            } else if (parameter.compare(0, 10, "grasp_body") == 0) {
+                path = join_path("arms[" + index + "]", parameter);
+            } else {
+                path = join_path("arms[" + index + "].end_effector", parameter);
             }
-            if (!known) {
-                std::string list;
-                for (const char* key : allowed) {
-                    list += list.empty() ? key : std::string(", ") + key;
-                }
-                fail(join_path(path, it.key()), "unknown field (allowed here: " + list + ")");
-            }
+        } else if (error.component() == "object") {
+            path = join_path("object", parameter);
+        } else if (error.component() == "load distribution") {
+            path = join_path("load_distribution", parameter);
         }
+        reader.fail(path, error.problem());
     }
-
-    const json& required(const json& object, const std::string& path, const char* key) const
-    {
-        const auto it = object.find(key);
-        if (it == object.end()) {
-            fail(join_path(path, key), "missing required field");
-        }
-        return *it;
-    }
-
-    const json* optional(const json& object, const char* key) const
-    {
-        const auto it = object.find(key);
-        return it == object.end() ? nullptr : &*it;
-    }
-
-    double number(const json& value, const std::string& path) const
-    {
-        if (!value.is_number()) {
-            fail(path, "expected a number, got " + type_name(value));
-        }
-        const double result = value.get<double>();
-        if (!std::isfinite(result)) {
-            fail(path, "must be finite");
-        }
-        return result;
-    }
-
-    double positive(const json& value, const std::string& path) const
-    {
-        const double result = number(value, path);
-        if (!(result > 0.0)) {
-            std::ostringstream problem;
-            problem << "must be positive, got " << result;
-            fail(path, problem.str());
-        }
-        return result;
-    }
-
-    std::string string(const json& value, const std::string& path) const
-    {
-        if (!value.is_string()) {
-            fail(path, "expected a string, got " + type_name(value));
-        }
-        return value.get<std::string>();
-    }
-
-    long long integer(const json& value, const std::string& path) const
-    {
-        if (!value.is_number_integer() && !value.is_number_unsigned()) {
-            fail(path, "expected an integer, got " + (value.is_number() ? std::string("a fractional number")
-                                                                        : type_name(value)));
-        }
-        return value.get<long long>();
-    }
-
-    const json& array(const json& value, const std::string& path, std::size_t size = 0) const
-    {
-        if (!value.is_array()) {
-            fail(path, "expected an array, got " + type_name(value));
-        }
-        if (size > 0 && value.size() != size) {
-            fail(path, "expected " + std::to_string(size) + " entries, got " + std::to_string(value.size()));
-        }
-        return value;
-    }
-
-    std::vector<double> numbers(const json& value, const std::string& path, std::size_t size = 0) const
-    {
-        array(value, path, size);
-        std::vector<double> result;
-        for (std::size_t i = 0; i < value.size(); ++i) {
-            result.push_back(number(value[i], index_path(path, i)));
-        }
-        return result;
-    }
-
-    Eigen::Vector3d vector3(const json& value, const std::string& path) const
-    {
-        const std::vector<double> v = numbers(value, path, 3);
-        return Eigen::Vector3d(v[0], v[1], v[2]);
-    }
-
-    /// A 3x3 matrix: [a, b, c] (the diagonal) or [[...], [...], [...]] (rows).
-    Eigen::Matrix3d matrix3(const json& value, const std::string& path) const
-    {
-        array(value, path, 3);
-        if (!value[0].is_array()) {
-            return vector3(value, path).asDiagonal();
-        }
-        Eigen::Matrix3d result;
-        for (std::size_t row = 0; row < 3; ++row) {
-            result.row(static_cast<Eigen::Index>(row)) = vector3(value[row], index_path(path, row)).transpose();
-        }
-        return result;
-    }
-
-    /// A unit quaternion written [w, x, y, z].
-    Eigen::Quaterniond quaternion(const json& value, const std::string& path) const
-    {
-        const std::vector<double> q = numbers(value, path, 4);
-        const Eigen::Quaterniond result(q[0], q[1], q[2], q[3]);
-        if (std::abs(result.norm() - 1.0) > 1e-9) {
-            std::ostringstream problem;
-            problem.precision(12);
-            problem << "must be a unit quaternion [w, x, y, z], has norm " << result.norm();
-            fail(path, problem.str());
-        }
-        return result;
-    }
-
-    coopdyn::Pose<double> pose(const json& object, const std::string& path) const
-    {
-        coopdyn::Pose<double> result;
-        if (const json* position = optional(object, "position")) {
-            result.position = vector3(*position, join_path(path, "position"));
-        }
-        if (const json* orientation = optional(object, "orientation")) {
-            result.orientation = quaternion(*orientation, join_path(path, "orientation"));
-        }
-        return result;
-    }
-
-    ImpedanceValues impedance_values(const json& value, const std::string& path, std::size_t axes) const
-    {
-        expect_object(value, path);
-        only_keys(value, path, {"inertia", "damping", "stiffness"});
-        ImpedanceValues result;
-        result.inertia = numbers(required(value, path, "inertia"), join_path(path, "inertia"), axes);
-        result.damping = numbers(required(value, path, "damping"), join_path(path, "damping"), axes);
-        result.stiffness = numbers(required(value, path, "stiffness"), join_path(path, "stiffness"), axes);
-        return result;
-    }
-
-    PaperExperiment paper_experiment(const json& value, const std::string& path, std::size_t axes) const
-    {
-        expect_object(value, path);
-        only_keys(value, path, {"nominal", "identified", "mean_squared_output_error"});
-        PaperExperiment result;
-        if (const json* nominal = optional(value, "nominal")) {
-            result.nominal = impedance_values(*nominal, join_path(path, "nominal"), axes);
-        }
-        if (const json* identified = optional(value, "identified")) {
-            result.identified = impedance_values(*identified, join_path(path, "identified"), axes);
-        }
-        if (const json* error = optional(value, "mean_squared_output_error")) {
-            result.mean_squared_output_error = positive(*error, join_path(path, "mean_squared_output_error"));
-        }
-        return result;
-    }
-
-    /// Runs a coopdyn validation and turns its coopdyn::Error into a ScenarioError at the JSON
-    /// path of the refused parameter, read from the error's fields. The file's field names are
-    /// coopdyn's parameter names, so the mapping is mechanical: component "object" ->
-    /// object.<p>; an arm's parameter -> arms[i].end_effector.<p> (arms[i].<p> for grasp_body.*,
-    /// load_distribution.<p>[i] for the weights); "load distribution" -> load_distribution.<p>;
-    /// anything else (the model's own parameters) -> <p>.
-    template <typename Check> void physical(Check&& check) const
-    {
-        try {
-            check();
-        } catch (const coopdyn::Error& error) {
-            const std::string& parameter = error.parameter();
-            std::string path = parameter;
-            if (error.has_arm()) {
-                const std::string index = std::to_string(error.arm());
-                if (error.component() == "load distribution") {
-                    path = "load_distribution." + parameter + "[" + index + "]";
-                } else if (parameter.compare(0, 10, "grasp_body") == 0) {
-                    path = join_path("arms[" + index + "]", parameter);
-                } else {
-                    path = join_path("arms[" + index + "].end_effector", parameter);
-                }
-            } else if (error.component() == "object") {
-                path = join_path("object", parameter);
-            } else if (error.component() == "load distribution") {
-                path = join_path("load_distribution", parameter);
-            }
-            fail(path, error.problem());
-        }
-    }
-
-private:
-    std::string source_;
-};
+}
 
 inline coopdyn::ImpedanceEndEffector<double> end_effector(const Reader& reader, const json& value,
                                                           const std::string& path)
@@ -361,33 +180,17 @@ inline coopdyn::ImpedanceEndEffector<double> end_effector(const Reader& reader, 
     return result;
 }
 
-}  // namespace detail
-
-/// Parses and validates a scenario from JSON text. `source` names it in error messages.
-/// Throws ScenarioError; never returns a partly filled Scenario.
-inline Scenario parse_scenario(const std::string& text, const std::string& source)
+/// The beam's schema, on a parsed document.
+inline Scenario read_scenario(const Reader& reader, const json& document)
 {
-    using detail::join_path;
-    using detail::json;
-    const detail::Reader reader(source);
-
-    json document;
-    try {
-        document = json::parse(text);
-    } catch (const json::parse_error& error) {
-        // nlohmann's message: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
-        std::string message = error.what();
-        const auto start = message.find("parse error");
-        reader.fail("", "not valid JSON: " + (start == std::string::npos ? message : message.substr(start)));
-    }
-
     Scenario scenario;
-    scenario.source = source;
+    scenario.source = reader.source();
     reader.expect_object(document, "");
     reader.only_keys(document, "",
                      {"name", "description", "time_step", "gravity", "object", "arm_count", "arms",
                       "load_distribution", "excitation", "paper"});
-    scenario.name = reader.string(reader.required(document, "", "name"), "name");
+    // The name prefixes the output files: a plain file name, checked here, not when writing.
+    scenario.name = reader.name(reader.required(document, "", "name"), "name");
     if (const json* description = reader.optional(document, "description")) {
         scenario.description = reader.string(*description, "description");
     }
@@ -408,8 +211,8 @@ inline Scenario parse_scenario(const std::string& text, const std::string& sourc
     reader.only_keys(object, "object", {"mass", "inertia_body", "position", "orientation"});
     scenario.object.mass = reader.number(reader.required(object, "object", "mass"), "object.mass");
     scenario.object.inertia_body = reader.matrix3(reader.required(object, "object", "inertia_body"), "object.inertia_body");
-    scenario.equilibrium = reader.pose(object, "object");
-    reader.physical([&] { scenario.object.validate(); });
+    scenario.equilibrium = pose(reader, object, "object");
+    physical(reader, [&] { scenario.object.validate(); });
 
     // --- arms
     const long long arm_count = reader.integer(reader.required(document, "", "arm_count"), "arm_count");
@@ -422,7 +225,7 @@ inline Scenario parse_scenario(const std::string& text, const std::string& sourc
                                 std::to_string(arm_count) + " (N mismatch)");
     }
     for (std::size_t i = 0; i < arms.size(); ++i) {
-        const std::string path = detail::index_path("arms", i);
+        const std::string path = index_path("arms", i);
         const json& arm = arms[i];
         reader.expect_object(arm, path);
         reader.only_keys(arm, path, {"grasp_body", "end_effector"});
@@ -431,10 +234,10 @@ inline Scenario parse_scenario(const std::string& text, const std::string& sourc
         reader.only_keys(grasp, join_path(path, "grasp_body"), {"position", "orientation"});
         reader.required(grasp, join_path(path, "grasp_body"), "position");
         Arm result;
-        result.grasp_body = reader.pose(grasp, join_path(path, "grasp_body"));
+        result.grasp_body = pose(reader, grasp, join_path(path, "grasp_body"));
         result.end_effector =
-            detail::end_effector(reader, reader.required(arm, path, "end_effector"), join_path(path, "end_effector"));
-        reader.physical([&] { result.end_effector.validate(static_cast<coopdyn::Index>(i)); });
+            end_effector(reader, reader.required(arm, path, "end_effector"), join_path(path, "end_effector"));
+        physical(reader, [&] { result.end_effector.validate(static_cast<coopdyn::Index>(i)); });
         scenario.arms.push_back(result);
     }
     const auto count = static_cast<std::size_t>(arm_count);
@@ -462,7 +265,7 @@ inline Scenario parse_scenario(const std::string& text, const std::string& sourc
         scenario.inertia_weights.resize(3, 3 * static_cast<Eigen::Index>(count));
         for (std::size_t i = 0; i < count; ++i) {
             scenario.inertia_weights.block<3, 3>(0, 3 * static_cast<Eigen::Index>(i)) =
-                reader.matrix3(inertias[i], detail::index_path(join_path(path, "inertia_weights"), i));
+                reader.matrix3(inertias[i], index_path(join_path(path, "inertia_weights"), i));
         }
     }
 
@@ -487,19 +290,19 @@ inline Scenario parse_scenario(const std::string& text, const std::string& sourc
             reference.source = reader.string(*source_text, "paper.source");
         }
         if (const json* x = reader.optional(*paper, "translation_x")) {
-            reference.translation_x = reader.paper_experiment(*x, "paper.translation_x", 1);
+            reference.translation_x = paper_experiment(reader, *x, "paper.translation_x", 1);
         }
         if (const json* z = reader.optional(*paper, "rotation_z")) {
-            reference.rotation_z = reader.paper_experiment(*z, "paper.rotation_z", 1);
+            reference.rotation_z = paper_experiment(reader, *z, "paper.rotation_z", 1);
         }
         if (const json* se3 = reader.optional(*paper, "se3")) {
-            reference.se3 = reader.paper_experiment(*se3, "paper.se3", 6);
+            reference.se3 = paper_experiment(reader, *se3, "paper.se3", 6);
         }
         scenario.paper = reference;
     }
 
     // --- the whole set-up, through coopdyn's own validation
-    reader.physical([&] {
+    physical(reader, [&] {
         const coopdyn::ImpedanceModelX model(scenario.object, scenario.arms, scenario.gravity);
         const auto distribution =
             scenario.has_custom_weights()
@@ -538,20 +341,21 @@ inline Scenario parse_scenario(const std::string& text, const std::string& sourc
     return scenario;
 }
 
+}  // namespace detail
+
+/// Parses and validates a scenario from JSON text. `source` names it in error messages.
+/// Throws ScenarioError only (nlohmann-json's exceptions included); never returns a partly
+/// filled Scenario.
+inline Scenario parse_scenario(const std::string& text, const std::string& source)
+{
+    return example_common::read_document(text, source, detail::read_scenario);
+}
+
 /// Reads and validates a scenario file. Throws ScenarioError (naming the file) when the file
 /// cannot be read or is invalid.
 inline Scenario load_scenario(const std::string& path)
 {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) {
-        throw ScenarioError(path, "", "cannot open the file for reading");
-    }
-    std::ostringstream text;
-    text << file.rdbuf();
-    if (file.bad()) {
-        throw ScenarioError(path, "", "read error");
-    }
-    return parse_scenario(text.str(), path);
+    return parse_scenario(example_common::read_text_file(path), path);
 }
 
 }  // namespace beam_example

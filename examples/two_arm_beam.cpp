@@ -10,12 +10,18 @@
 // values identified on the real robots. The set-up comes from a scenario file (JSON); see
 // docs/two-arm-beam.md for the file format, the CSV columns and the plots.
 //
-// Exit codes: 0 success, 1 run-time failure (identification, output files, gnuplot), 2 bad
-// command line, 3 invalid scenario file.
+// Every option is checked before anything runs (examples/common/cli.hpp): numbers must be finite
+// and in range, the output folder usable, the scenario valid (its name becomes a plain file-name
+// prefix), and options that depend on the scenario (--duration, --lowpass) consistent with it.
+//
+// Exit codes (example_common, examples/common/cli.hpp): 0 success, 1 run-time failure
+// (identification, output files, gnuplot), 2 bad command line, 3 invalid scenario file.
 
 #include "beam_experiment.hpp"
 #include "beam_report.hpp"
-#include "csv_table.hpp"
+#include "common/cli.hpp"
+#include "common/csv_table.hpp"
+#include "common/plotting.hpp"
 #include "scenario.hpp"
 
 #include <coopdyn/coopdyn.hpp>
@@ -31,6 +37,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #ifndef COOPDYN_SCENARIO_DIR
@@ -42,12 +49,26 @@ namespace {
 using namespace beam_example;
 namespace fs = std::filesystem;
 
-constexpr int exit_failure = 1;
-constexpr int exit_usage = 2;
-constexpr int exit_scenario = 3;
+using example_common::CsvTable;
+using example_common::exit_failure;
+using example_common::exit_scenario;
+using example_common::exit_usage;
+
+/// The default --scenario as --help shows it (relative to the repository root).
+const char* const shipped_scenario = "examples/scenarios/beam.json";
+
+/// The file of the default --scenario: the shipped beam in the source tree the program was built
+/// from (COOPDYN_SCENARIO_DIR), wherever the program is run from; if that tree is gone,
+/// examples/scenarios/beam.json relative to the working directory (the repository root).
+std::string default_scenario_file()
+{
+    const std::string built = std::string(COOPDYN_SCENARIO_DIR) + "/beam.json";
+    std::error_code error;
+    return fs::exists(built, error) ? built : std::string(shipped_scenario);
+}
 
 struct CommandLine {
-    std::string scenario = std::string(COOPDYN_SCENARIO_DIR) + "/beam.json";
+    std::string scenario;  ///< empty: default_scenario_file()
     bool scenario_given = false;
     std::vector<std::string> experiments{"all"};
     std::string excitation = "multisine";
@@ -55,8 +76,39 @@ struct CommandLine {
     std::string identify_log;
     bool plots = true;
     bool list_scenarios = false;
+    bool lowpass_given = false;
     RunOptions run;
 };
+
+/// What the scenario is, for the banner: "3 arms hold a 4.58 kg object".
+std::string setup_summary(const Scenario& scenario)
+{
+    const long long arms = static_cast<long long>(scenario.arm_count());
+    return std::to_string(arms) + (arms == 1 ? " arm holds a " : " arms hold a ") +
+           format("%.4g", scenario.object.mass) + " kg object";
+}
+
+/// Checks the options that depend on the scenario; prints the problem and returns false.
+bool options_fit_scenario(const CommandLine& command, const Scenario& scenario)
+{
+    if (command.run.duration / scenario.time_step < 100.0) {
+        std::fprintf(stderr, "two_arm_beam: --duration %g s gives fewer than 100 samples at the scenario's "
+                             "time step %g s\n",
+                     command.run.duration, scenario.time_step);
+        return false;
+    }
+    // The low-pass filters the logged wrench, sampled at the control loop's rate: a cut-off
+    // above the Nyquist frequency 1 / (2 T_s) cannot be represented (the default, 500 Hz, is
+    // the limit of the 1 kHz loop).
+    const double nyquist = 0.5 / scenario.time_step;
+    if (command.lowpass_given && command.run.sensors.lowpass_hz > nyquist * (1.0 + 1e-12)) {
+        std::fprintf(stderr, "two_arm_beam: --lowpass %g Hz is above the Nyquist limit %g Hz of the scenario's "
+                             "%g Hz loop (time step %g s); use at most %g Hz (0: no low-pass)\n",
+                     command.run.sensors.lowpass_hz, nyquist, 1.0 / scenario.time_step, scenario.time_step, nyquist);
+        return false;
+    }
+    return true;
+}
 
 /// Runs the selected experiments on a Model with N arms fixed at compile time (2, 3) or not.
 template <typename ModelType>
@@ -72,18 +124,18 @@ int run_experiments(const Scenario& scenario, const CommandLine& command, const 
         return exit_failure;
     }
 
-    std::printf("coopdyn two-arm beam: scenario '%s' (%s)\n", scenario.name.c_str(), scenario.source.c_str());
+    std::printf("coopdyn cooperative manipulation: %s, scenario '%s' (%s)\n", setup_summary(scenario).c_str(),
+                scenario.name.c_str(), scenario.source.c_str());
     if (!scenario.description.empty()) {
         std::printf("  %s\n", scenario.description.c_str());
     }
-    std::printf("  %lld arms, object %.4g kg, RK4 at %.4g Hz, %.4g s per experiment, seed %llu\n",
-                static_cast<long long>(model.arms()), scenario.object.mass, 1.0 / scenario.time_step,
+    std::printf("  RK4 at %.4g Hz, %.4g s per experiment, seed %llu\n", 1.0 / scenario.time_step,
                 command.run.duration, command.run.seed);
 
     Progress progress(command.run.progress);
     std::vector<ExperimentResult> results;
     std::vector<fs::path> written;
-    std::vector<std::pair<fs::path, fs::path>> plots;  // script, image
+    std::vector<example_common::Plot> plots;
     double simulated = 0.0, wall = 0.0;
     int number = 0;
     for (const ExperimentSpec& spec : specs) {
@@ -97,23 +149,20 @@ int run_experiments(const Scenario& scenario, const CommandLine& command, const 
         simulated += result.simulated_seconds;
         wall += result.simulation_seconds;
 
+        // Output files lie directly in --output: the scenario's name was checked when it was
+        // loaded, and confined_path() refuses any file name that could leave the folder.
         const std::string stem = scenario.name + "_" + spec.id;
-        const fs::path csv = output / (stem + ".csv");
+        const fs::path csv = example_common::confined_path(output, stem + ".csv");
         write_log_csv(csv, result.log);
         written.push_back(csv);
-        const fs::path script = output / (stem + ".gp");
-        {
-            std::ofstream file(script, std::ios::binary);
-            file << gnuplot_script(stem + ".csv", stem + ".png", scenario, result, command.run.sensors.enabled);
-            if (!file) {
-                throw std::runtime_error("error writing " + script.string());
-            }
-        }
-        plots.emplace_back(script, output / (stem + ".png"));
+        const fs::path script = example_common::confined_path(output, stem + ".gp");
+        example_common::write_text_file(
+            script, gnuplot_script(stem + ".csv", stem + ".png", scenario, result, command.run.sensors.enabled));
+        plots.push_back({script, example_common::confined_path(output, stem + ".png")});
         result.log = ExperimentLog{};  // the log is on disk; keep the fit only
         results.push_back(std::move(result));
     }
-    const fs::path summary = output / (scenario.name + "_identification.csv");
+    const fs::path summary = example_common::confined_path(output, scenario.name + "_identification.csv");
     write_summary_csv(summary, scenario, results, command.run);
     written.push_back(summary);
 
@@ -129,26 +178,7 @@ int run_experiments(const Scenario& scenario, const CommandLine& command, const 
         std::printf("plots: skipped (--no-plots); gnuplot scripts written next to the logs\n");
         return 0;
     }
-    const fs::path gnuplot = find_gnuplot();
-    if (gnuplot.empty()) {
-        std::printf("plots: skipped, gnuplot was not found on PATH (install the Debian package gnuplot-nox);\n"
-                    "  the scripts are written: cd %s && gnuplot %s_x.gp\n",
-                    shell_quote(output.string()).c_str(), scenario.name.c_str());
-        return 0;
-    }
-    std::printf("plots (gnuplot, PNG):\n");
-    for (const auto& [script, image] : plots) {
-        const std::string command_line = "cd " + shell_quote(output.string()) + " && " +
-                                         shell_quote(gnuplot.string()) + " " +
-                                         shell_quote(script.filename().string());
-        const int status = std::system(command_line.c_str());
-        if (status != 0) {
-            std::fprintf(stderr, "two_arm_beam: gnuplot failed on %s (status %d)\n", script.string().c_str(), status);
-            return exit_failure;
-        }
-        std::printf("  %s\n", image.string().c_str());
-    }
-    return 0;
+    return example_common::render_plots("two_arm_beam", plots) ? 0 : exit_failure;
 }
 
 /// --identify-log: the identification alone, on a log written by this program or by a real
@@ -278,14 +308,16 @@ int main(int argc, char** argv)
                  "two_arm_beam"};
     app.option_defaults()->always_capture_default();
     auto* scenario_option =
-        app.add_option("--scenario", command.scenario, "Scenario file (JSON), see examples/scenarios/")
-            ->type_name("FILE");
+        app.add_option("--scenario", command.scenario,
+                       "Scenario file (JSON), see examples/scenarios/; default: the shipped beam scenario")
+            ->type_name("FILE")
+            ->default_str(shipped_scenario);
     app.add_option("--experiment", command.experiments, "Experiments to run: x, rot_z, se3 or all")
         ->delimiter(',')
         ->check(CLI::IsMember({"x", "rot_z", "se3", "all"}))
         ->type_name("LIST");
     app.add_option("--duration", command.run.duration, "Simulated seconds per experiment")
-        ->check(CLI::Range(1.0, 3600.0))
+        ->check(example_common::number_in_range(1.0, 3600.0))
         ->type_name("SECONDS");
     app.add_option("--excitation", command.excitation,
                    "Disturbance wrench: multisine (random-phase, 0.1-5 Hz) or push (human-like pushes)")
@@ -293,12 +325,13 @@ int main(int argc, char** argv)
         ->type_name("KIND");
     app.add_option("--force", command.run.force,
                    "Force amplitude per axis [N]: RMS of the multisine, peak of a push (0: the scenario's)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(example_common::non_negative_number())
         ->type_name("NEWTONS");
     app.add_option("--torque", command.run.torque, "Torque amplitude per axis [N m] (0: the scenario's)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(example_common::non_negative_number())
         ->type_name("NEWTON_METRES");
-    app.add_option("--seed", command.run.seed, "Seed of the excitation phases/pushes and of the sensor noise");
+    app.add_option("--seed", command.run.seed, "Seed of the excitation phases/pushes and of the sensor noise")
+        ->check(example_common::decimal_unsigned());
     app.add_option("--runs", command.run.runs,
                    "Excitation runs per experiment: 4 = +u, -u, +2u, -2u, identified on the odd parts extrapolated "
                    "to zero amplitude (cancels the even- and third-order nonlinear distortion); 2 = +u, -u, odd "
@@ -310,18 +343,21 @@ int main(int argc, char** argv)
     app.add_flag("--noise", command.run.sensors.enabled,
                  "Realistic sensors: white noise on wrench and pose, and the force low-pass");
     app.add_option("--force-noise", command.run.sensors.force_rms, "Force noise with --noise [N RMS]")
-        ->check(CLI::NonNegativeNumber);
+        ->check(example_common::non_negative_number());
     app.add_option("--torque-noise", command.run.sensors.torque_rms, "Torque noise with --noise [N m RMS]")
-        ->check(CLI::NonNegativeNumber);
+        ->check(example_common::non_negative_number());
     app.add_option("--position-noise", command.run.sensors.position_rms, "Position noise with --noise [m RMS]")
-        ->check(CLI::NonNegativeNumber);
+        ->check(example_common::non_negative_number());
     app.add_option("--angle-noise", command.run.sensors.angle_rms, "Angle noise with --noise [rad RMS]")
-        ->check(CLI::NonNegativeNumber);
-    app.add_option("--lowpass", command.run.sensors.lowpass_hz,
-                   "Cut-off of the first-order force low-pass with --noise [Hz] (0: none)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(example_common::non_negative_number());
+    auto* lowpass_option = app.add_option(
+        "--lowpass", command.run.sensors.lowpass_hz,
+        "Cut-off of the first-order force low-pass with --noise [Hz] (0: none), at most the Nyquist limit "
+        "1 / (2 time step): 500 Hz at 1 kHz")
+        ->check(example_common::non_negative_number())
         ->type_name("HZ");
     app.add_option("--output", command.output, "Directory for the CSV logs and plots (created if missing)")
+        ->check(example_common::output_folder())
         ->type_name("DIR");
     bool no_plots = false;
     app.add_flag("--no-plots", no_plots, "Do not run gnuplot (the scripts are still written)");
@@ -345,6 +381,10 @@ int main(int argc, char** argv)
     }
     command.run.progress = !quiet;
     command.scenario_given = scenario_option->count() > 0;
+    if (!command.scenario_given) {
+        command.scenario = default_scenario_file();
+    }
+    command.lowpass_given = lowpass_option->count() > 0;
     command.run.excitation = command.excitation == "push" ? ExcitationKind::push : ExcitationKind::multisine;
 
     try {
@@ -361,10 +401,7 @@ int main(int argc, char** argv)
         if (!command.identify_log.empty()) {
             return identify_log(command, command.scenario_given ? &scenario : nullptr);
         }
-        if (command.run.duration * 1.0 / scenario.time_step < 100.0) {
-            std::fprintf(stderr, "two_arm_beam: --duration %g s gives fewer than 100 samples at the scenario's "
-                                 "time step %g s\n",
-                         command.run.duration, scenario.time_step);
+        if (!options_fit_scenario(command, scenario)) {
             return exit_usage;
         }
         std::vector<ExperimentSpec> specs;

@@ -1,7 +1,11 @@
-// Tests of the scenario loader of the two-arm beam example (examples/scenario.hpp): every shipped
-// scenario loads, and each kind of malformed or physically invalid file is refused with a message
-// that names the JSON path of the field and what is wrong with it.
+// Tests of the scenario loader of the two-arm beam example (examples/scenario.hpp, on the shared
+// examples/common/json_reader.hpp): every shipped scenario loads, and each kind of malformed or
+// physically invalid file is refused with a message that names the JSON path of the field and what
+// is wrong with it, nlohmann-json's own errors (e.g. a number too large for a double) included.
 #include "scenario.hpp"
+
+#include "common/json_reader.hpp"
+#include "common/output_names.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +14,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -258,6 +264,136 @@ TEST(ScenarioLoader, SyntaxErrorAndMissingFile)
             << error.what();
     }
     EXPECT_THROW(beam_example::parse_scenario("[1, 2, 3]", "array.json"), ScenarioError);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Numbers nlohmann-json cannot hold, and names that would leave the output folder.
+
+/// Parses the beam with the JSON text `literal` in place of the value that `edit` sets to a
+/// marker, expecting a ScenarioError at `path` whose problem contains `problem`.
+void expect_literal_refused(const std::function<void(json&)>& edit, const std::string& literal,
+                            const std::string& path, const std::string& problem)
+{
+    json document = beam_document();
+    edit(document);
+    std::string text = document.dump(2);
+    const std::string marker = "\"@@marker@@\"";
+    const auto at = text.find(marker);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, marker.size(), literal);
+    try {
+        beam_example::parse_scenario(text, "edited.json");
+        ADD_FAILURE() << "accepted " << literal << " at " << path;
+    } catch (const ScenarioError& error) {
+        std::printf("[ refused ] %s\n", error.what());
+        EXPECT_EQ(error.path(), path) << error.what();
+        EXPECT_NE(error.problem().find(problem), std::string::npos) << error.what();
+        EXPECT_EQ(std::string(error.what()).rfind("edited.json: " + path + ": ", 0), 0u) << error.what();
+    }
+}
+
+TEST(ScenarioLoader, NumberTooLargeForADoubleNamesFileAndPath)
+{
+    // nlohmann-json refuses 1e400 (it would be inf) with an out_of_range exception that names
+    // neither the file nor the field; the loader reports both.
+    const auto marker = [](json& value) { value = "@@marker@@"; };
+    expect_literal_refused([&](json& d) { marker(d["object"]["mass"]); }, "1e400", "object.mass",
+                           "not a finite number");
+    expect_literal_refused([&](json& d) { marker(d["arms"][1]["end_effector"]["rotational_inertia"][2]); }, "-1e400",
+                           "arms[1].end_effector.rotational_inertia[2]", "not a finite number");
+    // After a whole object in an array (arms[0]) the index moves on.
+    expect_literal_refused([&](json& d) { marker(d["arms"][1]["grasp_body"]["position"][0]); }, "1e999",
+                           "arms[1].grasp_body.position[0]", "number overflow parsing '1e999'");
+    expect_literal_refused([&](json& d) { marker(d["paper"]["se3"]["identified"]["damping"][4]); }, "2e308",
+                           "paper.se3.identified.damping[4]", "not a finite number");
+    expect_literal_refused([&](json& d) { marker(d["time_step"]); }, "1e400", "time_step", "not a finite number");
+    // Integers: too large for the loader's integer type, or written as a whole float.
+    expect_literal_refused([&](json& d) { marker(d["arm_count"]); }, "18446744073709551615", "arm_count",
+                           "integer too large");
+    expect_literal_refused([&](json& d) { marker(d["arm_count"]); }, "1e20", "arm_count",
+                           "expected an integer, got 1e+20");
+    // Numbers that are finite but out of range for the field stay the loader's usual errors.
+    expect_literal_refused([&](json& d) { marker(d["object"]["mass"]); }, "-1e300", "object.mass",
+                           "must be positive and finite");
+}
+
+TEST(ScenarioLoader, NameMustBeAPlainFileName)
+{
+    // The name prefixes every output file (<output>/<name>_x.csv): it is checked at load time.
+    expect_refused([](json& d) { d["name"] = "../escaped"; }, "name", "must not contain a path separator");
+    expect_refused([](json& d) { d["name"] = "/tmp/escaped"; }, "name", "must not contain a path separator");
+    expect_refused([](json& d) { d["name"] = "a\\b"; }, "name", "must not contain a path separator");
+    expect_refused([](json& d) { d["name"] = ""; }, "name", "must not be empty");
+    expect_refused([](json& d) { d["name"] = ".hidden"; }, "name", "must not start with a dot");
+    expect_refused([](json& d) { d["name"] = ".."; }, "name", "must not start with a dot");
+    expect_refused([](json& d) { d["name"] = "two words"; }, "name", "must be a plain file name");
+    expect_refused([](json& d) { d["name"] = "quote'"; }, "name", "must be a plain file name");
+    expect_refused([](json& d) { d["name"] = "line\nbreak"; }, "name", "\\x0a");
+    expect_refused([](json& d) { d["name"] = std::string(65, 'a'); }, "name", "is too long, 65 characters");
+
+    json document = beam_document();
+    document["name"] = "Beam_v2.1-test";
+    EXPECT_EQ(beam_example::parse_scenario(document.dump(), "ok.json").name, "Beam_v2.1-test");
+}
+
+TEST(JsonReader, EveryNlohmannExceptionBecomesAScenarioError)
+{
+    using example_common::JsonReader;
+    // A schema that trips over nlohmann-json itself (at() on a missing key throws out_of_range):
+    // read_document reports it at the path read last.
+    const auto schema = [](const JsonReader& reader, const json& document) {
+        const json& object = reader.required(document, "", "object");
+        reader.expect_object(object, "object");
+        return object.at("no_such_key").get<double>();
+    };
+    try {
+        example_common::read_document(R"({"object": {"mass": 1}})", "schema.json", schema);
+        ADD_FAILURE() << "no error";
+    } catch (const ScenarioError& error) {
+        std::printf("[ refused ] %s\n", error.what());
+        EXPECT_EQ(error.source(), "schema.json");
+        EXPECT_EQ(error.path(), "object");
+        EXPECT_NE(error.problem().find("no_such_key"), std::string::npos) << error.what();
+        EXPECT_EQ(error.problem().find("[json.exception"), std::string::npos) << error.what();
+    }
+    // Top-level errors and a number overflow in a top-level array.
+    EXPECT_THROW(example_common::parse_json("", "empty.json"), ScenarioError);
+    try {
+        example_common::parse_json("[1, {\"a\": [2]}, 1e400]", "array.json");
+        ADD_FAILURE() << "no error";
+    } catch (const ScenarioError& error) {
+        EXPECT_EQ(error.path(), "[2]") << error.what();
+    }
+}
+
+TEST(JsonReader, ValueChecks)
+{
+    const example_common::JsonReader reader("checks.json");
+    EXPECT_DOUBLE_EQ(reader.in_range(json(0.5), "a", 0.0, 1.0), 0.5);
+    const auto problem = [](const std::function<void()>& read) {
+        try {
+            read();
+        } catch (const ScenarioError& error) {
+            return error.problem();
+        }
+        return std::string("(accepted)");
+    };
+    EXPECT_EQ(problem([&] { reader.in_range(json(2.0), "a", 0.0, 1.0); }), "must be between 0 and 1, got 2");
+    EXPECT_EQ(problem([&] { reader.in_range(json(-2.0), "a", 0.0, 1e300); }), "must be between 0 and 1e+300, got -2");
+    EXPECT_EQ(problem([&] { reader.non_negative(json(-1.0), "a"); }), "must be non-negative, got -1");
+    EXPECT_EQ(problem([&] { reader.positive(json(0.0), "a"); }), "must be positive, got 0");
+    EXPECT_EQ(problem([&] { reader.number(json(std::numeric_limits<double>::infinity()), "a"); }),
+              "must be finite, got inf");
+    EXPECT_EQ(problem([&] { reader.number(json("1"), "a"); }), "expected a number, got string");
+    EXPECT_EQ(problem([&] { reader.only_keys(json::parse(R"({"b": 1})"), "a", {"c"}); }),
+              "unknown field (allowed here: c)");
+    EXPECT_EQ(problem([&] { reader.required(json::parse(R"({"b": 1})"), "a", "c"); }), "missing required field");
+
+    // Output files are built only from plain names.
+    EXPECT_EQ(example_common::confined_path("out", "beam_x.csv"), std::filesystem::path("out") / "beam_x.csv");
+    EXPECT_THROW(example_common::confined_path("out", "../beam_x.csv"), std::runtime_error);
+    EXPECT_THROW(example_common::confined_path("out", ""), std::runtime_error);
+    EXPECT_THROW(example_common::confined_path("out", ".."), std::runtime_error);
 }
 
 }  // namespace

@@ -3,8 +3,9 @@
 // against docs/analysis.md (the paper's (56), (59), (61)). Also: the CSV logs are complete and
 // consistent (total = internal + external, internal wrenches do no work on the object), the
 // identification can be repeated from the logged columns alone, the other shipped scenarios run,
-// and command-line or scenario errors give a message and a non-zero exit code.
-#include "csv_table.hpp"
+// and command-line or scenario errors give a message and a non-zero exit code before anything
+// runs.
+#include "common/csv_table.hpp"
 
 #include <coopdyn/coopdyn.hpp>
 
@@ -13,6 +14,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -26,7 +28,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-using beam_example::CsvTable;
+using example_common::CsvTable;
 
 const std::string program = TWO_ARM_BEAM_EXE;
 const std::string scenario_dir = COOPDYN_SCENARIO_DIR;
@@ -142,6 +144,7 @@ TEST(TwoArmBeam, NoiseFreeIdentificationRecoversSection9ToFourDigits)
     ASSERT_EQ(single.exit_code, 0) << single.output;
     std::printf("%s", single.output.c_str());
     EXPECT_TRUE(contains(single.output, "Experiment 1 of 2: translation along x"));
+    EXPECT_TRUE(contains(single.output, "2 arms hold a 1.75 kg object, scenario 'beam'")) << single.output;
     EXPECT_TRUE(contains(single.output, "-> 4 significant digits"));
     const std::array<double, 2> worst = check_summary(directory / "out" / "beam_identification.csv", 6);
     EXPECT_LT(worst[0], 5e-5);
@@ -315,7 +318,8 @@ TEST(TwoArmBeam, OtherScenarios)
     const ProgramRun plate = run_program(directory, "--scenario " + quote(scenario_dir + "/plate_three_arms.json") +
                                          " --duration 3 --torque 0.01 --no-plots --quiet --output out");
     ASSERT_EQ(plate.exit_code, 0) << plate.output;
-    EXPECT_TRUE(contains(plate.output, "3 arms"));
+    EXPECT_TRUE(contains(plate.output, "3 arms hold a 4.58 kg object, scenario 'plate'")) << plate.output;
+    EXPECT_FALSE(contains(plate.output, "two-arm beam")) << plate.output;  // the banner said so
     EXPECT_TRUE(contains(plate.output, "axes decoupled"));
     const CsvTable summary((directory / "out" / "plate_identification.csv").string());
     ASSERT_EQ(summary.rows(), 24u);
@@ -348,6 +352,10 @@ TEST(TwoArmBeam, ErrorsGiveMessagesAndExitCodes)
                                "--seed", "--noise", "--lowpass", "--output", "--no-plots", "--identify-log"}) {
         EXPECT_TRUE(contains(help.output, option)) << option;
     }
+    // The default scenario is shown relative to the repository, not as the build machine's path
+    // (it is still found at run time: the other tests run without --scenario).
+    EXPECT_TRUE(contains(help.output, "--scenario FILE=examples/scenarios/beam.json")) << help.output;
+    EXPECT_FALSE(contains(help.output, scenario_dir)) << help.output;
 
     const ProgramRun unknown = run_program(directory, "--frobnicate");
     EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
@@ -433,6 +441,119 @@ TEST(TwoArmBeam, IdentifyAnExistingLog)
     const ProgramRun missing_columns = run_program(directory, "--identify-log out/beam_identification.csv");
     EXPECT_EQ(missing_columns.exit_code, 1) << missing_columns.output;
     EXPECT_TRUE(contains(missing_columns.output, "'time'")) << missing_columns.output;
+}
+
+/// Runs the program with options that must be refused: exit code `code`, quickly, a message that
+/// contains `message`, nothing simulated and no file written (the directory holds only the
+/// captured output).
+void expect_refused_up_front(const std::string& arguments, int code, const std::string& message)
+{
+    SCOPED_TRACE(arguments);
+    const fs::path directory = fresh_directory("refused");
+    const auto start = std::chrono::steady_clock::now();
+    const ProgramRun run = run_program(directory, arguments);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("[ refused ] %s -> %d: %s", arguments.c_str(), run.exit_code, run.output.c_str());
+    EXPECT_EQ(run.exit_code, code) << run.output;
+    EXPECT_TRUE(contains(run.output, message)) << run.output;
+    EXPECT_LT(seconds, 5.0) << "a refused option must not run anything";
+    EXPECT_FALSE(contains(run.output, "Experiment")) << run.output;
+    EXPECT_FALSE(contains(run.output, "bad_alloc")) << run.output;
+    EXPECT_LT(run.output.size(), 400u) << "a short message";
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(directory)) {
+        if (entry.path().filename() != "program_output.txt") {
+            files.push_back(entry.path().filename().string());
+        }
+    }
+    EXPECT_TRUE(files.empty()) << files.size() << " file(s) written, e.g. " << (files.empty() ? "" : files.front());
+}
+
+TEST(TwoArmBeam, InvalidOptionsAreRefusedBeforeAnythingRuns)
+{
+    const std::string rest = " --no-plots --quiet --output out";
+    // NaN and infinities: CLI11's own range checks let NaN through.
+    expect_refused_up_front("--duration nan" + rest, 2, "--duration: must be a finite number in [1, 3600], got nan");
+    expect_refused_up_front("--duration inf" + rest, 2, "--duration: must be a finite number in [1, 3600], got inf");
+    expect_refused_up_front("--duration 1e999" + rest, 2, "--duration: must be a finite number");
+    expect_refused_up_front("--force nan" + rest, 2, "--force: must be a non-negative finite number, got nan");
+    expect_refused_up_front("--torque=-inf" + rest, 2, "--torque: must be a non-negative finite number, got -inf");
+    expect_refused_up_front("--force-noise nan --noise" + rest, 2, "--force-noise: must be a non-negative finite number");
+    expect_refused_up_front("--angle-noise nan" + rest, 2, "--angle-noise: must be a non-negative finite number");
+    // Readable limits (CLI11 printed DBL_MAX with all its digits).
+    expect_refused_up_front("--force -1" + rest, 2, "--force: must be a non-negative finite number, got -1");
+    expect_refused_up_front("--duration 0.5" + rest, 2, "--duration: must be a finite number in [1, 3600], got 0.5");
+    expect_refused_up_front("--lowpass abc" + rest, 2, "--lowpass: must be a non-negative finite number, got abc");
+    // The low-pass filters the 1 kHz log: above the 500 Hz Nyquist limit it is refused (whether
+    // or not --noise is given), after the scenario is read and before anything runs.
+    expect_refused_up_front("--lowpass 600 --noise" + rest, 2, "--lowpass 600 Hz is above the Nyquist limit 500 Hz");
+    expect_refused_up_front("--lowpass 500.5" + rest, 2, "Nyquist limit 500 Hz");
+    // A negative seed would wrap around; a leading zero would be read as octal.
+    expect_refused_up_front("--seed -1" + rest, 2, "--seed: must be a non-negative decimal integer, got -1");
+    expect_refused_up_front("--seed 010" + rest, 2, "--seed: must be a non-negative decimal integer, got 010");
+    // The output folder.
+    expect_refused_up_front("--no-plots --quiet --output ''", 2, "--output: must not be empty");
+    expect_refused_up_front("--duration 1 --runs 3" + rest, 2, "--runs");
+    expect_refused_up_front("--duration 1 --experiment x,rot_q" + rest, 2, "--experiment");
+
+    // At the limits the options are accepted.
+    const fs::path directory = fresh_directory("limits");
+    const ProgramRun limits = run_program(directory, "--experiment x --duration 1 --runs 1 --noise --lowpass 500 "
+                                                     "--force-noise 0 --seed 0 --no-plots --quiet --output out");
+    ASSERT_EQ(limits.exit_code, 0) << limits.output;
+    EXPECT_TRUE(contains(limits.output, "500 Hz force low-pass")) << limits.output;
+    EXPECT_TRUE(fs::exists(directory / "out" / "beam_x.csv"));
+}
+
+/// The shipped beam with `from` (found once) replaced by `to`, written to `directory / file`.
+void write_edited_beam(const fs::path& directory, const std::string& file, const std::string& from,
+                       const std::string& to)
+{
+    std::ifstream in(scenario_dir + "/beam.json");
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    std::string text = buffer.str();
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+    std::ofstream out(directory / file);
+    out << text;
+}
+
+TEST(TwoArmBeam, ScenarioNumbersAndNamesAreCheckedBeforeAnythingRuns)
+{
+    const fs::path directory = fresh_directory("scenario_checks");
+    // A number too large for a double: nlohmann-json's own error becomes file + JSON path.
+    write_edited_beam(directory, "huge.json", "\"mass\": 1.75", "\"mass\": 1e400");
+    const ProgramRun huge = run_program(directory, "--scenario huge.json --duration 1 --no-plots --quiet --output out");
+    EXPECT_EQ(huge.exit_code, 3) << huge.output;
+    EXPECT_TRUE(contains(huge.output, "huge.json: object.mass: not a finite number")) << huge.output;
+    EXPECT_FALSE(contains(huge.output, "[json.exception")) << huge.output;
+
+    // A name that would write outside --output, and an empty one (which gave "_x.csv").
+    write_edited_beam(directory, "escaped.json", "\"name\": \"beam\"", "\"name\": \"../escaped\"");
+    const ProgramRun escaped =
+        run_program(directory, "--scenario escaped.json --experiment x --duration 1 --no-plots --quiet --output out");
+    EXPECT_EQ(escaped.exit_code, 3) << escaped.output;
+    EXPECT_TRUE(contains(escaped.output, "escaped.json: name: must not contain a path separator")) << escaped.output;
+    write_edited_beam(directory, "unnamed.json", "\"name\": \"beam\"", "\"name\": \"\"");
+    const ProgramRun unnamed =
+        run_program(directory, "--scenario unnamed.json --experiment x --duration 1 --no-plots --quiet --output out");
+    EXPECT_EQ(unnamed.exit_code, 3) << unnamed.output;
+    EXPECT_TRUE(contains(unnamed.output, "unnamed.json: name: must not be empty")) << unnamed.output;
+
+    // Nothing was written, neither in nor next to the output folder.
+    EXPECT_FALSE(fs::exists(directory / "out"));
+    EXPECT_FALSE(fs::exists(directory / "escaped_x.csv"));
+    EXPECT_FALSE(fs::exists(directory / "escaped_identification.csv"));
+
+    // A valid name with dots and dashes writes its files inside --output only.
+    write_edited_beam(directory, "dotted.json", "\"name\": \"beam\"", "\"name\": \"beam.v2-test\"");
+    const ProgramRun dotted =
+        run_program(directory, "--scenario dotted.json --experiment x --duration 1 --runs 1 --no-plots --quiet --output out");
+    ASSERT_EQ(dotted.exit_code, 0) << dotted.output;
+    EXPECT_TRUE(fs::exists(directory / "out" / "beam.v2-test_x.csv"));
+    EXPECT_TRUE(fs::exists(directory / "out" / "beam.v2-test_identification.csv"));
 }
 
 }  // namespace

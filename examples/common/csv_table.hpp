@@ -1,17 +1,22 @@
-// A small reader for the example's CSV files (a header row, then rows of numbers or text):
-// used by `two_arm_beam --identify-log` and by the tests that check the example's output.
+// CSV files of the example programs (a header row, then rows of numbers or text): CsvTable
+// reads them (`two_arm_beam --identify-log`, the tests that check the programs' output),
+// CsvWriter writes them (numbers with 10 significant digits, NaN as "nan").
 #pragma once
 
 #include <cerrno>
+#include <charconv>
+#include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-namespace beam_example {
+namespace example_common {
 
 /// Columns of a CSV file by header name. Cells are kept as text; number() parses them.
 class CsvTable {
@@ -119,4 +124,68 @@ private:
     std::vector<std::vector<std::string>> rows_;
 };
 
-}  // namespace beam_example
+/// Writes a CSV file row by row. Throws std::runtime_error (naming the file) when it cannot be
+/// opened or written.
+class CsvWriter {
+public:
+    explicit CsvWriter(const std::filesystem::path& path) : path_(path), file_(path, std::ios::binary)
+    {
+        if (!file_) {
+            throw std::runtime_error("cannot open " + path.string() + " for writing");
+        }
+    }
+    void text(const std::string& value)
+    {
+        separate();
+        line_ += value;
+    }
+    void number(double value)
+    {
+        separate();
+        if (std::isnan(value)) {
+            line_ += "nan";
+            return;
+        }
+        char buffer[32];
+        const auto written = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 10);
+        line_.append(buffer, written.ptr);
+    }
+    /// The number, or an empty cell.
+    void optional(const std::optional<double>& value)
+    {
+        if (value) {
+            number(*value);
+        } else {
+            text("");
+        }
+    }
+    void end_row()
+    {
+        line_ += '\n';
+        file_ << line_;
+        line_.clear();
+        first_ = true;
+    }
+    void close()
+    {
+        file_.close();
+        if (!file_) {
+            throw std::runtime_error("error writing " + path_.string());
+        }
+    }
+
+private:
+    void separate()
+    {
+        if (!first_) {
+            line_ += ',';
+        }
+        first_ = false;
+    }
+    std::filesystem::path path_;
+    std::ofstream file_;
+    std::string line_;
+    bool first_ = true;
+};
+
+}  // namespace example_common
