@@ -6,6 +6,7 @@
 // and command-line or scenario errors give a message and a non-zero exit code before anything
 // runs.
 #include "common/csv_table.hpp"
+#include "program_runner.hpp"
 
 #include <coopdyn/coopdyn.hpp>
 
@@ -34,46 +35,18 @@ const std::string program = TWO_ARM_BEAM_EXE;
 const std::string scenario_dir = COOPDYN_SCENARIO_DIR;
 const fs::path output_root = TWO_ARM_BEAM_TEST_OUTPUT;
 
-struct ProgramRun {
-    int exit_code = -1;
-    std::string output;  // stdout and stderr
-};
-
-std::string quote(const std::string& text)
-{
-    std::string result = "'";
-    for (const char c : text) {
-        result += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    }
-    return result + "'";
-}
+using example_tests::contains;
+using example_tests::ProgramRun;
+using example_tests::quote;
 
 /// A fresh output directory for one test.
-fs::path fresh_directory(const std::string& name)
-{
-    const fs::path directory = output_root / name;
-    fs::remove_all(directory);
-    fs::create_directories(directory);
-    return directory;
-}
+fs::path fresh_directory(const std::string& name) { return example_tests::fresh_directory(output_root, name); }
 
 /// Runs the example with `arguments` in `directory`; `environment` is prefixed (e.g. "PATH=/x").
 ProgramRun run_program(const fs::path& directory, const std::string& arguments, const std::string& environment = "")
 {
-    const fs::path log = directory / "program_output.txt";
-    const std::string command = "cd " + quote(directory.string()) + " && " + environment + " " + quote(program) +
-                                " " + arguments + " > " + quote(log.string()) + " 2>&1";
-    const int status = std::system(command.c_str());
-    ProgramRun result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream file(log);
-    std::ostringstream text;
-    text << file.rdbuf();
-    result.output = text.str();
-    return result;
+    return example_tests::run_program(program, directory, arguments, environment);
 }
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // docs/analysis.md: nominal values (56), (59), (61) and the paper's identified ones (57), (60), (62).
 struct Expected {

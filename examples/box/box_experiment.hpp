@@ -1,0 +1,388 @@
+// One dual-arm box experiment (docs/dual-arm-box.md): coopdyn's projected inverse-dynamics
+// controller (Lin et al.) drives two 7-joint arms squeezing a box, on the MuJoCo plant or the
+// rigid-grasp plant, while a person pushes, loads or grabs the box. Every tick is logged.
+//
+// The controller gets M, h, J, Jdot qdot of the arms alone, the box's measured pose, twist and
+// (one tick late) acceleration, and the desired pose; it knows neither the box's mass nor the
+// person's force (it estimates both as F_x, L(7)) and uses its own, conservative friction model.
+#pragma once
+
+#include "box_scenario.hpp"
+#include "lwr4.hpp"
+#include "mujoco_arms.hpp"
+
+#include <coopdyn/control.hpp>
+#include <coopdyn/spatial/quaternion.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace box_example {
+
+using Controller = coopdyn::ControllerModel<double, palms, joints>;
+using ControllerData = coopdyn::ControllerData<double, palms, joints>;
+using ControllerInput = coopdyn::ControllerInput<double, palms, joints>;
+
+/// The box's pose and where the palms touch it when the experiment starts (the keyframe "hold").
+struct Grasp {
+    coopdyn::Pose<double> box{};
+    std::array<Eigen::Vector3d, palms> palm_position{};
+    std::array<Eigen::Matrix3d, palms> palm_rotation{};
+    JointVector q = JointVector::Zero();
+};
+
+/// The grasp at the keyframe "hold": the box's pose, the palms' contact frames, the arms' q.
+inline Grasp hold_grasp(const DualArmBoxModel& world)
+{
+    const DataPointer data = world.make_data_at_hold();
+    compute_arm_stages(world.get(), data.get());
+    ArmTerms terms;
+    std::vector<mjtNum> scratch(static_cast<std::size_t>(6 * world.get()->nv + world.get()->nv * world.get()->nv));
+    read_arm_terms(world, world.get(), data.get(), terms, scratch.data());
+    Grasp grasp;
+    const mjtNum* box = data->qpos + joints;
+    grasp.box.position = Eigen::Vector3d(box[0], box[1], box[2]);
+    grasp.box.orientation = Eigen::Quaterniond(box[3], box[4], box[5], box[6]).normalized();
+    grasp.palm_position = terms.palm_position;
+    grasp.palm_rotation = terms.palm_rotation;
+    grasp.q = Eigen::Map<const JointVector>(data->qpos);
+    return grasp;
+}
+
+/// The controller's parameters for a scenario: each palm's contact frame in the box (z: the box's
+/// inward normal = the palm's outward normal), its friction model, the impedance and posture gains.
+inline coopdyn::ControllerParameters<double> controller_parameters(const ControllerSettings& settings,
+                                                                   const Grasp& grasp)
+{
+    coopdyn::ControllerParameters<double> parameters;
+    parameters.joints = joints;
+    const Eigen::Matrix3d box_rotation = grasp.box.orientation.toRotationMatrix();
+    for (std::size_t i = 0; i < palms; ++i) {
+        coopdyn::ContactPoint<double> contact;
+        contact.frame.position = box_rotation.transpose() * (grasp.palm_position[i] - grasp.box.position);
+        contact.frame.orientation = Eigen::Quaterniond(box_rotation.transpose() * grasp.palm_rotation[i]).normalized();
+        contact.friction.friction_coefficient = settings.friction;
+        contact.friction.torsional_coefficient = settings.torsional_friction;
+        contact.friction.patch_half_length_x = settings.patch_half_size;
+        contact.friction.patch_half_length_y = settings.patch_half_size;
+        contact.friction.minimum_normal_force = settings.minimum_normal_force;
+        parameters.contacts.push_back(contact);
+    }
+    parameters.stiffness.diagonal() << Eigen::Vector3d::Constant(settings.translational_stiffness),
+        Eigen::Vector3d::Constant(settings.rotational_stiffness);
+    parameters.damping.diagonal() << Eigen::Vector3d::Constant(settings.translational_damping),
+        Eigen::Vector3d::Constant(settings.rotational_damping);
+    parameters.posture_stiffness = Eigen::VectorXd::Constant(joints, settings.posture_stiffness);
+    parameters.posture_damping = Eigen::VectorXd::Constant(joints, settings.posture_damping);
+    parameters.objective.moment_weight = settings.moment_weight;
+    return parameters;
+}
+
+/// The palms' true friction as a coopdyn friction model, for the margin of the measured wrenches:
+/// the plant's coefficients, the palm's patch, no minimum force, a 64-edge pyramid (within 0.12 %
+/// of the cone).
+inline coopdyn::ContactFriction<double> true_friction(const PlantFriction& plant, double patch_half_size)
+{
+    coopdyn::ContactFriction<double> friction;
+    friction.friction_coefficient = plant.sliding;
+    friction.torsional_coefficient = plant.torsional;
+    friction.patch_half_length_x = patch_half_size;
+    friction.patch_half_length_y = patch_half_size;
+    friction.minimum_normal_force = 0.0;
+    friction.pyramid_edges = coopdyn::max_pyramid_edges;
+    return friction;
+}
+
+/// The person's force magnitude at time t (the push profile: ramps, holds, releases).
+inline double push_force(const Push& push, double t) noexcept
+{
+    for (int k = 0; k < push.repeats; ++k) {
+        const double local = t - push.start - k * push.period;
+        if (local < 0.0) {
+            break;
+        }
+        const double up = push.ramp;
+        const double held = up + push.hold;
+        const double down = held + push.ramp;
+        if (local < up) {
+            return push.force * local / push.ramp;
+        }
+        if (local < held) {
+            return push.force;
+        }
+        if (local < down) {
+            return push.force * (down - local) / push.ramp;
+        }
+    }
+    return 0.0;
+}
+
+/// Mass added on the box by time t (kg).
+inline double added_mass(const AddedMass& added, double t) noexcept
+{
+    if (t < added.start) {
+        return 0.0;
+    }
+    const double steps = std::floor((t - added.start) / added.interval) + 1.0;
+    return std::min(added.total, steps * added.step);
+}
+
+/// The desired pose, twist and acceleration at time t (the hold pose, or the circle).
+struct Desired {
+    coopdyn::Pose<double> pose{};
+    Vector6d twist = Vector6d::Zero();
+    Vector6d acceleration = Vector6d::Zero();
+};
+
+inline Desired desired_motion(const BoxScenario& scenario, const coopdyn::Pose<double>& hold, double t) noexcept
+{
+    Desired desired;
+    desired.pose = hold;
+    if (!scenario.circle) {
+        return desired;
+    }
+    const Circle& circle = *scenario.circle;
+    const double local = std::max(0.0, t - circle.start);
+    // theta's rate ramps linearly from 0 to s over the ramp, then stays.
+    double theta, rate, rate_of_rate;
+    if (local < circle.ramp) {
+        theta = 0.5 * circle.angular_speed * local * local / circle.ramp;
+        rate = circle.angular_speed * local / circle.ramp;
+        rate_of_rate = t >= circle.start ? circle.angular_speed / circle.ramp : 0.0;
+    } else {
+        theta = circle.angular_speed * (local - 0.5 * circle.ramp);
+        rate = circle.angular_speed;
+        rate_of_rate = 0.0;
+    }
+    const double r = circle.radius;
+    const Eigen::Vector3d radial(0.0, std::cos(theta), std::sin(theta));
+    const Eigen::Vector3d tangent(0.0, -std::sin(theta), std::cos(theta));
+    desired.pose.position = hold.position + r * (radial - Eigen::Vector3d::UnitY());
+    desired.twist.head<3>() = r * rate * tangent;
+    desired.acceleration.head<3>() = r * rate_of_rate * tangent - r * rate * rate * radial;
+    return desired;
+}
+
+/// One tick of the log (docs/dual-arm-box.md, "The CSV columns").
+struct TickLog {
+    double time = 0.0;
+    Eigen::Vector3d box_position = Eigen::Vector3d::Zero();
+    Eigen::Vector3d desired_position = Eigen::Vector3d::Zero();
+    double orientation_error = 0.0;  ///< rad, box against desired
+    Vector6d external_wrench = Vector6d::Zero();  ///< F_x, the controller's estimate
+    Vector6d disturbance = Vector6d::Zero();      ///< what the person applied, [F; T] at the centre
+    Eigen::Vector3d box_acceleration = Eigen::Vector3d::Zero();  ///< the plant's, in this tick's step
+    std::array<Vector6d, palms> predicted{};      ///< QP's contact wrench, contact frame [f; t]
+    std::array<Vector6d, palms> measured{};       ///< plant's, contact frame
+    std::array<Vector6d, palms> measured_world{}; ///< plant's, about the contact point, {w}
+    std::array<double, palms> measured_margin{};  ///< friction margin of the measured wrench, true friction
+    double predicted_margin = 0.0;                ///< tightest margin of the QP's wrenches, controller's friction
+    std::array<double, palms> slip{};             ///< m, the box relative to each palm since the start
+    coopdyn::ControlStatus status = coopdyn::ControlStatus::ok;
+    coopdyn::QpStatus qp_status = coopdyn::QpStatus::solved;
+    int qp_iterations = 0;
+    JointVector motion_torque = JointVector::Zero();   ///< tau_u
+    JointVector squeeze_torque = JointVector::Zero();  ///< tau_c
+    double torque_use = 0.0;  ///< max_j |tau_j| / limit_j of the torque sent (after saturation)
+    double box_mass = 0.0;    ///< the plant's current box mass (kg)
+};
+
+struct ExperimentRun {
+    std::vector<TickLog> log;
+    bool dropped = false;         ///< the box left the palms (slip above drop_slip)
+    double dropped_at = 0.0;
+    double tick_seconds = 0.0;    ///< wall time of the controller ticks, total
+    double wall_seconds = 0.0;    ///< wall time of the whole run
+};
+
+/// Slip above which a run counts as a drop and stops (m).
+constexpr double drop_slip = 0.05;
+/// How long the palms press into the box before t = 0 (s).
+constexpr double settle_seconds = 0.2;
+
+/// Runs `scenario` on `plant` (MujocoPlant or RigidGraspPlant) from the grasp at its current
+/// state. `progress(fraction)` is called about every simulated tenth of a second.
+/// The person's trembling hand (BoxScenario::person_tremor): white noise low-passed at 5 Hz,
+/// scaled to the RMS per axis, reproducible from the seed.
+class Tremor {
+public:
+    Tremor(double rms, unsigned long long seed, double period)
+        : generator_(seed),
+          gain_(1.0 - std::exp(-2.0 * 3.14159265358979323846 * 5.0 * period)),
+          // A first-order low-pass of unit white noise has variance gain / (2 - gain).
+          scale_(rms * std::sqrt((2.0 - gain_) / gain_))
+    {
+    }
+    Eigen::Vector3d next()
+    {
+        for (Eigen::Index k = 0; k < 3; ++k) {
+            state_(k) += gain_ * (normal_(generator_) - state_(k));
+        }
+        return scale_ * state_;
+    }
+
+private:
+    std::mt19937_64 generator_;
+    std::normal_distribution<double> normal_{0.0, 1.0};
+    double gain_;
+    double scale_;
+    Eigen::Vector3d state_ = Eigen::Vector3d::Zero();
+};
+
+template <typename Plant>
+ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Grasp& grasp, unsigned long long seed = 1,
+                             const std::function<void(double)>& progress = {})
+{
+    const Controller controller(controller_parameters(scenario.controller, grasp));
+    ControllerData data(controller);
+    ControllerInput input(controller);
+    input.posture = grasp.q;
+    const coopdyn::ContactFriction<double> friction =
+        true_friction(scenario.plant_friction, scenario.controller.patch_half_size);
+    JointVector limit;
+    limit << torque_limits(), torque_limits();
+
+    // The box's centre in each palm's frame at t = 0: slip is how far it moved from there.
+    std::array<Eigen::Vector3d, palms> box_in_palm{};
+
+    ExperimentRun run;
+    const double period = 0.001;
+    const auto ticks = static_cast<long>(std::llround(scenario.duration / period));
+    run.log.reserve(static_cast<std::size_t>(ticks));
+    Vector6d filtered_acceleration = Vector6d::Zero();
+    const double cutoff = scenario.controller.acceleration_cutoff;
+    const double filter_gain = cutoff > 0.0 ? 1.0 - std::exp(-2.0 * 3.14159265358979323846 * cutoff * period) : 0.0;
+    Tremor tremor(scenario.person_tremor, seed, period);
+    Eigen::Vector3d grab_point = Eigen::Vector3d::Zero();
+    bool grabbed = false;
+    const auto wall_start = std::chrono::steady_clock::now();
+    // The palms first press into the box for settle_seconds (not logged, no disturbance): in
+    // MuJoCo the keyframe's palms touch the box without force, and the soft contact takes a few
+    // ticks to build up the commanded squeeze.
+    const auto settle_ticks = static_cast<long>(std::llround(settle_seconds / period));
+    for (long tick = -settle_ticks; tick < ticks; ++tick) {
+        const double t = static_cast<double>(tick) * period;
+        if (scenario.added_mass) {
+            const double mass = scenario.box_mass + added_mass(*scenario.added_mass, t);
+            if (mass != plant.box_mass()) {
+                plant.set_box_mass(mass);
+            }
+        }
+        plant.begin_tick();
+        // A copy: the rigid plant re-evaluates its terms at the next state in end_tick, and the log
+        // needs the palms where the controller saw them.
+        const ArmTerms terms = plant.arm_terms();
+        input.inertia = terms.inertia;
+        input.bias = terms.bias;
+        input.jacobian = terms.jacobian;
+        input.jacobian_rate_qdot = terms.jacobian_rate_qdot;
+        input.positions = plant.joint_positions();
+        input.velocities = plant.joint_velocities();
+        input.object.pose.position = plant.box_position();
+        input.object.pose.orientation = plant.box_orientation();
+        input.object.twist = plant.box_twist();
+        // L(7) needs the box's acceleration: the plant's last one, low-passed as on a robot (a
+        // soft-contact simulation's raw acceleration is as spiky as a real accelerometer's).
+        filtered_acceleration += filter_gain * (plant.box_acceleration() - filtered_acceleration);
+        input.object_acceleration = filtered_acceleration;
+        const Desired desired = desired_motion(scenario, grasp.box, t);
+        input.desired_pose = desired.pose;
+        input.desired_twist = desired.twist;
+        input.desired_acceleration = desired.acceleration;
+
+        const auto tick_start = std::chrono::steady_clock::now();
+        JointVector tau = coopdyn::controller_tick(controller, data, input);
+        run.tick_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tick_start).count();
+
+        TickLog row;
+        for (int j = 0; j < joints; ++j) {
+            const double bound = limit(j);
+            tau(j) = std::clamp(tau(j), -bound, bound);
+            row.torque_use = std::max(row.torque_use, std::abs(tau(j)) / bound);
+        }
+
+        // What the person does to the box: a push, or a grab that holds it where it was.
+        Vector6d disturbance = Vector6d::Zero();
+        const Eigen::Vector3d trembling = tremor.next();
+        if (scenario.push) {
+            const double force = push_force(*scenario.push, t);
+            disturbance.head<3>() = force * scenario.push->direction;
+            if (force > 0.0) {
+                disturbance.head<3>() += trembling;
+            }
+        }
+        if (scenario.person_hold) {
+            const PersonHold& hold = *scenario.person_hold;
+            const bool holding = t >= hold.start && t < hold.start + hold.duration;
+            if (holding && !grabbed) {
+                grab_point = plant.box_position();
+            }
+            grabbed = holding;
+            if (holding) {
+                disturbance.head<3>() += -hold.stiffness * (plant.box_position() - grab_point) -
+                                         hold.damping * plant.box_twist().template head<3>() + trembling;
+            }
+        }
+        plant.end_tick(tau, disturbance);
+
+        if (tick < 0) {
+            continue;
+        }
+        if (tick == 0) {
+            for (std::size_t i = 0; i < palms; ++i) {
+                box_in_palm[i] =
+                    terms.palm_rotation[i].transpose() * (input.object.pose.position - terms.palm_position[i]);
+            }
+        }
+        row.time = t;
+        row.box_position = input.object.pose.position;
+        row.desired_position = desired.pose.position;
+        row.orientation_error =
+            coopdyn::quaternion_log(Eigen::Quaterniond(input.object.pose.orientation * desired.pose.orientation.conjugate()))
+                .norm();
+        row.external_wrench = data.external_wrench;
+        row.disturbance = disturbance;
+        row.box_acceleration = plant.box_acceleration().template head<3>();
+        row.predicted_margin = data.tightest_margin;
+        for (std::size_t i = 0; i < palms; ++i) {
+            const auto palm = static_cast<int>(i);
+            row.predicted[i] = data.contact_frame_wrenches.col(palm);
+            const Eigen::Matrix3d& rotation = terms.palm_rotation[i];
+            const Vector6d& world = plant.measured_contact_wrench(palm);
+            row.measured_world[i] = world;
+            row.measured[i] << rotation.transpose() * world.head<3>(), rotation.transpose() * world.tail<3>();
+            row.measured_margin[i] = coopdyn::friction_margin(friction, row.measured[i]);
+            // Slip: how far the box's centre moved in the palm's contact plane (the palm's x-y;
+            // along the normal the soft contact's penetration changes with the squeeze).
+            const Eigen::Vector3d now =
+                rotation.transpose() * (input.object.pose.position - terms.palm_position[i]);
+            row.slip[i] = (now - box_in_palm[i]).head<2>().norm();
+        }
+        row.status = data.status;
+        row.qp_status = data.qp_status;
+        row.qp_iterations = data.qp_iterations;
+        row.motion_torque = data.motion_torque;
+        row.squeeze_torque = data.squeeze_torque;
+        row.box_mass = plant.box_mass();
+        run.log.push_back(row);
+
+        if (std::max(row.slip[0], row.slip[1]) > drop_slip) {
+            run.dropped = true;
+            run.dropped_at = t;
+            break;
+        }
+        if (progress && tick % 100 == 0) {
+            progress(static_cast<double>(tick) / static_cast<double>(ticks));
+        }
+    }
+    run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    return run;
+}
+
+}  // namespace box_example

@@ -1,0 +1,239 @@
+// Output of the dual-arm box example (docs/dual-arm-box.md, "Output"): the summary numbers of a
+// run, the printed table next to the paper's, the CSV log and the gnuplot scripts in the style of
+// Lin et al. Figs. 6 and 8.
+#pragma once
+
+#include "box_experiment.hpp"
+
+#include "../common/csv_table.hpp"
+#include "../common/plotting.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace box_example {
+
+/// What one run amounts to.
+struct BoxSummary {
+    std::string experiment;
+    std::string plant;
+    double simulated_seconds = 0.0;
+    bool dropped = false;
+    double rest_normal_predicted = 0.0;  ///< mean over palms and the first rest_window, N
+    double rest_normal_measured = 0.0;
+    double peak_normal_predicted = 0.0;  ///< largest normal force of either palm, N
+    double peak_normal_measured = 0.0;
+    double max_slip = 0.0;               ///< m
+    double min_true_margin = 0.0;        ///< of the measured wrenches under the true friction
+    double max_force_error = 0.0;        ///< max |f_predicted - f_measured| over palms and ticks, N
+    /// The normal force the plant needed: |f_t| / mu_true of the measured wrenches, largest over
+    /// the run, against the Coulomb estimate W / (2 mu_true) of the heaviest load held statically.
+    double needed_normal = 0.0;
+    double coulomb_estimate = 0.0;
+    int qp_not_solved = 0;               ///< ticks whose contact QP was not `solved`
+    int fallback_ticks = 0;              ///< ticks that used the least-violating fallback
+    double max_tracking_error = 0.0;     ///< m, outside the person's hold (circle); else the whole run
+    double max_torque_use = 0.0;         ///< max |tau_j| / limit_j
+    double real_time_factor = 0.0;       ///< simulated / wall time
+    double mean_tick_microseconds = 0.0; ///< the controller tick alone
+};
+
+/// The window at the start that counts as "at rest" (before any disturbance), s.
+constexpr double rest_window = 0.8;
+
+inline BoxSummary summarise(const BoxScenario& scenario, const std::string& plant, const ExperimentRun& run)
+{
+    BoxSummary s;
+    s.experiment = scenario.name;
+    s.plant = plant;
+    s.dropped = run.dropped;
+    s.min_true_margin = std::numeric_limits<double>::infinity();
+    int rest_samples = 0;
+    double heaviest = 0.0;
+    for (const TickLog& row : run.log) {
+        const bool held_by_person = scenario.person_hold && row.time >= scenario.person_hold->start &&
+                                    row.time < scenario.person_hold->start + scenario.person_hold->duration + 1.0;
+        for (std::size_t i = 0; i < palms; ++i) {
+            if (row.time < rest_window) {
+                s.rest_normal_predicted += row.predicted[i](2);
+                s.rest_normal_measured += row.measured[i](2);
+                ++rest_samples;
+            }
+            s.peak_normal_predicted = std::max(s.peak_normal_predicted, row.predicted[i](2));
+            s.peak_normal_measured = std::max(s.peak_normal_measured, row.measured[i](2));
+            s.max_slip = std::max(s.max_slip, row.slip[i]);
+            s.min_true_margin = std::min(s.min_true_margin, row.measured_margin[i]);
+            s.max_force_error =
+                std::max(s.max_force_error, (row.predicted[i].head<3>() - row.measured[i].head<3>()).norm());
+            s.needed_normal =
+                std::max(s.needed_normal, row.measured[i].head<2>().norm() / scenario.plant_friction.sliding);
+        }
+        heaviest = std::max(heaviest, row.box_mass);
+        s.qp_not_solved += row.qp_status == coopdyn::QpStatus::solved ? 0 : 1;
+        s.fallback_ticks += row.status == coopdyn::ControlStatus::friction_infeasible ? 1 : 0;
+        if (!held_by_person) {
+            s.max_tracking_error = std::max(s.max_tracking_error, (row.box_position - row.desired_position).norm());
+        }
+        s.max_torque_use = std::max(s.max_torque_use, row.torque_use);
+    }
+    if (rest_samples > 0) {
+        s.rest_normal_predicted /= rest_samples;
+        s.rest_normal_measured /= rest_samples;
+    }
+    s.simulated_seconds = run.log.empty() ? 0.0 : run.log.back().time + 0.001;
+    s.coulomb_estimate = heaviest * 9.81 / (2.0 * scenario.plant_friction.sliding);
+    s.real_time_factor = run.wall_seconds > 0.0 ? s.simulated_seconds / run.wall_seconds : 0.0;
+    s.mean_tick_microseconds = run.log.empty() ? 0.0 : 1e6 * run.tick_seconds / static_cast<double>(run.log.size());
+    return s;
+}
+
+/// The log's columns (docs/dual-arm-box.md, "The CSV columns").
+inline std::vector<std::string> box_log_columns()
+{
+    std::vector<std::string> columns{"time", "x", "y", "z", "x_d", "y_d", "z_d", "rotation_error",
+                                     "est_fx", "est_fy", "est_fz", "est_tx", "est_ty", "est_tz",
+                                     "person_fx", "person_fy", "person_fz", "ax", "ay", "az"};
+    const char* axes[] = {"fx", "fy", "fz", "tx", "ty", "tz"};
+    for (const char* palm : {"left", "right"}) {
+        for (const char* kind : {"pred", "meas"}) {
+            for (const char* axis : axes) {
+                columns.push_back(std::string(palm) + "_" + kind + "_" + axis);
+            }
+            columns.push_back(std::string(palm) + "_" + kind + "_force_norm");
+        }
+        columns.push_back(std::string(palm) + "_true_margin");
+        columns.push_back(std::string(palm) + "_slip");
+    }
+    for (const char* name : {"predicted_margin", "status", "qp_status", "qp_iterations"}) {
+        columns.emplace_back(name);
+    }
+    for (const char* kind : {"tau_u", "tau_c"}) {
+        for (int j = 1; j <= joints; ++j) {
+            columns.push_back(std::string(kind) + "_" + std::to_string(j));
+        }
+    }
+    columns.emplace_back("torque_use");
+    columns.emplace_back("box_mass");
+    return columns;
+}
+
+inline void write_box_log(const std::filesystem::path& path, const ExperimentRun& run)
+{
+    example_common::CsvWriter csv(path);
+    for (const std::string& column : box_log_columns()) {
+        csv.text(column);
+    }
+    csv.end_row();
+    const auto numbers = [&csv](const auto& vector) {
+        for (Eigen::Index k = 0; k < vector.size(); ++k) {
+            csv.number(vector(k));
+        }
+    };
+    for (const TickLog& row : run.log) {
+        csv.number(row.time);
+        numbers(row.box_position);
+        numbers(row.desired_position);
+        csv.number(row.orientation_error);
+        numbers(row.external_wrench);
+        numbers(row.disturbance.head<3>());
+        numbers(row.box_acceleration);
+        for (std::size_t i = 0; i < palms; ++i) {
+            numbers(row.predicted[i]);
+            csv.number(row.predicted[i].head<3>().norm());
+            numbers(row.measured[i]);
+            csv.number(row.measured[i].head<3>().norm());
+            csv.number(row.measured_margin[i]);
+            csv.number(row.slip[i]);
+        }
+        csv.number(row.predicted_margin);
+        csv.text(coopdyn::to_string(row.status));
+        csv.text(coopdyn::to_string(row.qp_status));
+        csv.number(row.qp_iterations);
+        numbers(row.motion_torque);
+        numbers(row.squeeze_torque);
+        csv.number(row.torque_use);
+        csv.number(row.box_mass);
+        csv.end_row();
+    }
+    csv.close();
+}
+
+/// The gnuplot script of one run: Fig. 6's expected (blue) and measured (red) contact-force norm
+/// of each palm over time, plus what disturbed the box; for the circle, Fig. 8's y and z tracking
+/// (solid: the box, dashed: desired) above the force norms.
+inline std::string box_plot_script(const BoxScenario& scenario, const std::string& plant, const std::string& csv_name,
+                                   const std::string& png_name)
+{
+    const bool circle = scenario.experiment == Experiment::circle;
+    std::string s;
+    s += "# Generated by dual_arm_box. Rerun with: gnuplot " + png_name.substr(0, png_name.size() - 4) + ".gp\n";
+    s += "set terminal pngcairo size 1000," + std::string(circle ? "1000" : "750") + " font 'sans,10'\n";
+    s += "set output '" + png_name + "'\n";
+    s += "set datafile separator ','\nset grid\nset key top right\nset xlabel 'time [s]'\n";
+    s += "set style line 1 lc rgb '#1f77b4' lw 1.5\nset style line 2 lc rgb '#d62728' lw 1.2\n";
+    s += "set style line 3 lc rgb '#1f77b4' lw 1.5 dt 2\nset style line 4 lc rgb '#d62728' lw 1.2 dt 2\n";
+    s += "set style line 5 lc rgb '#2ca02c' lw 1.5\n";
+    s += "set multiplot layout " + std::string(circle ? "3" : "2") + ",1 title 'coopdyn dual-arm box, " +
+         scenario.name + " (" + plant + " plant)'\n";
+    const auto column = [](const char* name) { return std::string("(column('") + name + "'))"; };
+    if (circle) {
+        for (const char* axis : {"y", "z"}) {
+            const std::string desired = std::string(axis) + "_d";
+            s += std::string("set ylabel '") + axis + " [m]'\n";
+            s += "plot '" + csv_name + "' using " + column("time") + ":" + column(axis) +
+                 " with lines ls 1 title 'box', '' using " + column("time") + ":" + column(desired.c_str()) +
+                 " with lines ls 4 title 'desired'\n";
+        }
+    }
+    s += "set ylabel 'contact force norm [N]'\n";
+    s += "plot '" + csv_name + "' using " + column("time") + ":" + column("left_pred_force_norm") +
+         " with lines ls 1 title 'expected (left palm)', '' using " + column("time") + ":" +
+         column("left_meas_force_norm") + " with lines ls 2 title 'measured (left palm)', '' using " +
+         column("time") + ":" + column("right_pred_force_norm") + " with lines ls 3 title 'expected (right)', '' using " +
+         column("time") + ":" + column("right_meas_force_norm") + " with lines ls 4 title 'measured (right)'\n";
+    if (!circle) {
+        if (scenario.experiment == Experiment::add_mass) {
+            s += "set ylabel 'box mass [kg]'\n";
+            s += "plot '" + csv_name + "' using " + column("time") + ":" + column("box_mass") +
+                 " with lines ls 5 title 'box mass (unknown to the controller)'\n";
+        } else {
+            s += "set ylabel 'z [m]'\n";
+            s += "plot '" + csv_name + "' using " + column("time") + ":" + column("z") +
+                 " with lines ls 1 title 'box height', '' using " + column("time") + ":" + column("z_d") +
+                 " with lines ls 4 title 'desired'\n";
+        }
+    }
+    s += "unset multiplot\n";
+    return s;
+}
+
+inline std::string format_optional(const char* pattern, const std::optional<double>& value)
+{
+    if (!value) {
+        return "-";
+    }
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, pattern, *value);
+    return buffer;
+}
+
+/// The printed table: one row per run, the paper's numbers alongside.
+inline void print_box_table(const std::vector<std::pair<BoxScenario, BoxSummary>>& runs)
+{
+    std::printf("\n%-9s %-7s %9s %9s %6s %9s %9s %6s %8s %8s %9s %9s %6s %6s\n", "", "", "rest N", "meas", "paper",
+                "peak N", "meas", "paper", "slip mm", "margin", "needed N", "W/(2mu)", "track", "RTF");
+    for (const auto& [scenario, s] : runs) {
+        std::printf("%-9s %-7s %9.1f %9.1f %6s %9.1f %9.1f %6s %8.3f %8.2f %9.1f %9.1f %6.3f %6.0f%s\n",
+                    s.experiment.c_str(), s.plant.c_str(), s.rest_normal_predicted, s.rest_normal_measured,
+                    format_optional("%.0f", scenario.paper.squeeze_at_rest).c_str(), s.peak_normal_predicted,
+                    s.peak_normal_measured, format_optional("%.0f", scenario.paper.squeeze_pushed).c_str(),
+                    1e3 * s.max_slip, s.min_true_margin, s.needed_normal, s.coulomb_estimate, s.max_tracking_error,
+                    s.real_time_factor, s.dropped ? "  DROPPED" : "");
+    }
+}
+
+}  // namespace box_example

@@ -1,0 +1,212 @@
+// dual_arm_box: the second paper's experiments (Lin et al., section IV, Figs. 5-8) in simulation.
+// Two 7-joint arms squeeze a box with coopdyn's projected inverse-dynamics controller while a
+// person pushes it down, loads it with masses or grabs it on a circular path; on the MuJoCo plant
+// (friction only holds the box) or the exact rigid-grasp plant. Prints a table next to the paper's
+// numbers and writes CSV logs, gnuplot scripts and PNG plots. docs/dual-arm-box.md.
+#include "box_report.hpp"
+#include "box_scenario_loader.hpp"
+#include "mujoco_plant.hpp"
+#include "rigid_plant.hpp"
+
+#include "../common/cli.hpp"
+#include "../common/output_names.hpp"
+#include "../common/plotting.hpp"
+#include "../common/progress.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#ifndef COOPDYN_BOX_DIR
+#define COOPDYN_BOX_DIR "examples/box"
+#endif
+
+namespace {
+
+using namespace box_example;
+namespace fs = std::filesystem;
+using example_common::exit_failure;
+using example_common::exit_scenario;
+using example_common::exit_usage;
+
+/// The shipped files as --help shows them (relative to the repository root).
+const char* const shipped_dir = "examples/box";
+
+/// The shipped folder in the source tree the program was built from, wherever it is run from; if
+/// that tree is gone, examples/box relative to the working directory (the repository root).
+std::string box_dir()
+{
+    std::error_code error;
+    return fs::exists(std::string(COOPDYN_BOX_DIR) + "/dual_arm_box.xml", error) ? std::string(COOPDYN_BOX_DIR)
+                                                                                  : std::string(shipped_dir);
+}
+
+struct CommandLine {
+    std::vector<std::string> experiments{"all"};
+    std::vector<std::string> scenarios;  ///< files; empty: the shipped ones of `experiments`
+    std::string plant = "mujoco";
+    double duration = 0.0;  ///< 0: each scenario's
+    double friction = 0.0;  ///< 0: each scenario's controller friction
+    unsigned long long seed = 1;
+    std::string output = "out/box";
+    bool plots = true;
+    bool progress = true;
+};
+
+std::vector<std::string> scenario_files(const CommandLine& command)
+{
+    if (!command.scenarios.empty()) {
+        return command.scenarios;
+    }
+    std::vector<std::string> files;
+    const bool all = std::find(command.experiments.begin(), command.experiments.end(), "all") != command.experiments.end();
+    for (const char* name : {"hold", "push", "add_mass", "circle"}) {
+        if (all || std::find(command.experiments.begin(), command.experiments.end(), name) != command.experiments.end()) {
+            files.push_back(box_dir() + "/scenarios/" + name + ".json");
+        }
+    }
+    return files;
+}
+
+/// Runs one scenario on one plant, writes its log and plot script; returns the summary.
+template <typename Plant>
+BoxSummary run_one(Plant& plant, const BoxScenario& scenario, const std::string& plant_name, const Grasp& grasp,
+                   const CommandLine& command, example_common::Progress& progress,
+                   std::vector<example_common::Plot>& plots)
+{
+    const std::string label = scenario.name + " (" + plant_name + ")";
+    const ExperimentRun run =
+        run_experiment(plant, scenario, grasp, command.seed, [&](double fraction) { progress.update(label, fraction); });
+    progress.finish();
+    const std::string stem = scenario.name + "_" + plant_name;
+    const fs::path csv = example_common::confined_path(command.output, stem + ".csv");
+    write_box_log(csv, run);
+    const fs::path script = example_common::confined_path(command.output, stem + ".gp");
+    const fs::path image = example_common::confined_path(command.output, stem + ".png");
+    example_common::write_text_file(
+        script, box_plot_script(scenario, plant_name, csv.filename().string(), image.filename().string()));
+    plots.push_back({script, image});
+    return summarise(scenario, plant_name, run);
+}
+
+int run(const CommandLine& command, std::vector<BoxScenario> scenarios)
+{
+    const DualArmBoxModel world(box_dir() + "/dual_arm_box.xml");
+    const Grasp grasp = hold_grasp(world);
+    fs::create_directories(command.output);
+    example_common::Progress progress(command.progress);
+    std::vector<example_common::Plot> plots;
+    std::vector<std::pair<BoxScenario, BoxSummary>> summaries;
+    const bool mujoco = command.plant != "rigid";
+    const bool rigid = command.plant != "mujoco";
+    for (BoxScenario& scenario : scenarios) {
+        if (command.duration > 0.0) {
+            scenario.duration = command.duration;
+        }
+        if (command.friction > 0.0) {
+            scenario.controller.friction = command.friction;
+        }
+        if (mujoco) {
+            MujocoPlant plant(world, scenario.plant_friction);
+            plant.set_box_mass(scenario.box_mass);
+            summaries.emplace_back(scenario, run_one(plant, scenario, "mujoco", grasp, command, progress, plots));
+        }
+        if (rigid) {
+            const DataPointer start = world.make_data_at_hold();
+            RigidGraspPlant plant(world, *start, box_inertia(world, scenario.box_mass));
+            summaries.emplace_back(scenario, run_one(plant, scenario, "rigid", grasp, command, progress, plots));
+        }
+    }
+    std::printf("dual_arm_box: two 7-joint arms squeeze a %.1f kg box (unknown to the controller), Lin et al. "
+                "section IV\n",
+                scenarios.front().box_mass);
+    print_box_table(summaries);
+    std::printf("  rest/peak N: normal force per palm, the QP's (expected) and the plant's (measured); slip: the box "
+                "relative to the palms;\n  margin: tightest friction margin of the measured wrenches under the true "
+                "friction (N); needed N: |f_t| / mu_true,\n  against W / (2 mu_true) for the heaviest load; track: "
+                "largest |x - x_d| (m) outside a person's hold; RTF: real-time factor.\n");
+    std::printf("logs and plot scripts: %s\n", command.output.c_str());
+    bool dropped = false;
+    for (const auto& entry : summaries) {
+        dropped = dropped || entry.second.dropped;
+    }
+    if (command.plots && !example_common::render_plots("dual_arm_box", plots)) {
+        return exit_failure;
+    }
+    if (dropped) {
+        std::fprintf(stderr, "dual_arm_box: the box was dropped (see the table)\n");
+        return exit_failure;
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    CommandLine command;
+    CLI::App app{"dual_arm_box: the dual-arm box experiments of Lin et al. (section IV, Figs. 5-8) in simulation.\n"
+                 "Two 7-joint arms hold a box by friction with coopdyn's projected inverse-dynamics controller\n"
+                 "while a person pushes it, loads it or grabs it. Writes CSV logs, gnuplot scripts and PNG plots\n"
+                 "to --output. Docs: docs/dual-arm-box.md",
+                 "dual_arm_box"};
+    app.option_defaults()->always_capture_default();
+    app.add_option("--experiment", command.experiments, "Shipped experiments to run: hold, push, add_mass, circle or all")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"hold", "push", "add_mass", "circle", "all"}))
+        ->type_name("LIST");
+    app.add_option("--scenario", command.scenarios,
+                   "Scenario files (JSON) instead of the shipped ones (examples/box/scenarios/)")
+        ->type_name("FILE");
+    app.add_option("--plant", command.plant, "mujoco (friction contact), rigid (welded palms) or both")
+        ->check(CLI::IsMember({"mujoco", "rigid", "both"}))
+        ->type_name("PLANT");
+    app.add_option("--duration", command.duration, "Simulated seconds per experiment (default: the scenario's)")
+        ->check(example_common::number_in_range(0.01, 3600.0))
+        ->default_str("scenario")
+        ->type_name("SECONDS");
+    app.add_option("--friction", command.friction,
+                   "The controller's friction coefficient (default: the scenario's, 0.2; the plant's is 0.5)")
+        ->check(example_common::number_in_range(0.01, 2.0))
+        ->default_str("scenario")
+        ->type_name("MU");
+    app.add_option("--seed", command.seed, "Seed of the person's trembling hand")
+        ->check(example_common::decimal_unsigned())
+        ->type_name("N");
+    app.add_option("--output", command.output, "Directory for the CSV logs and plots (created if missing)")
+        ->check(example_common::output_folder())
+        ->type_name("DIR");
+    bool no_plots = false;
+    app.add_flag("--no-plots", no_plots, "Do not run gnuplot (the scripts are still written)");
+    bool quiet = false;
+    app.add_flag("--quiet", quiet, "No progress line");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& error) {
+        const int code = app.exit(error);
+        return code == 0 ? 0 : exit_usage;
+    }
+    command.plots = !no_plots;
+    command.progress = !quiet;
+
+    std::vector<BoxScenario> scenarios;
+    try {
+        for (const std::string& file : scenario_files(command)) {
+            scenarios.push_back(load_box_scenario(file));
+        }
+    } catch (const ScenarioError& error) {
+        std::fprintf(stderr, "dual_arm_box: invalid scenario: %s\n", error.what());
+        return exit_scenario;
+    }
+    try {
+        return run(command, std::move(scenarios));
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "\ndual_arm_box: %s\n", error.what());
+        return exit_failure;
+    }
+}

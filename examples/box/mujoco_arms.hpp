@@ -1,0 +1,169 @@
+// The dual-arm box's MJCF model (dual_arm_box.xml) loaded into MuJoCo, and what the controller
+// needs of the two arms each tick, read from MuJoCo's own functions on the arms alone:
+// M (14 x 14), h (14), the palms' stacked Jacobian J (12 x 14, rows [v; w] per palm in {w}) and
+// Jdot qdot (12). docs/dual-arm-box.md, "The plants".
+//
+// The box's free joint is a separate kinematic tree: it couples to the arms neither in M nor in
+// the bias, so the arms' blocks of MuJoCo's full-model quantities are the arms' alone.
+//
+// This header belongs to the examples (it depends on MuJoCo), not to the library.
+#pragma once
+
+#include <Eigen/Core>
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace box_example {
+
+constexpr int arm_joints = 7;
+constexpr int joints = 2 * arm_joints;  ///< Q: left arm (qpos/qvel 0-6), right arm (7-13)
+constexpr int palms = 2;                ///< K: 0 = left palm, 1 = right palm
+
+using JointVector = Eigen::Matrix<double, joints, 1>;
+using JointMatrix = Eigen::Matrix<double, joints, joints>;
+using StackVector = Eigen::Matrix<double, 6 * palms, 1>;
+using StackJacobian = Eigen::Matrix<double, 6 * palms, joints>;
+
+/// What the controller gets of the arms at one state (q, qdot).
+struct ArmTerms {
+    JointMatrix inertia = JointMatrix::Identity();  ///< M(q)
+    JointVector bias = JointVector::Zero();         ///< h(q, qdot) = C qdot + g
+    StackJacobian jacobian = StackJacobian::Zero(); ///< J: palm i's contact-point twist [v; w] in {w}
+    StackVector jacobian_rate_qdot = StackVector::Zero();  ///< Jdot qdot
+    std::array<Eigen::Vector3d, palms> palm_position{};    ///< contact points in {w}
+    std::array<Eigen::Matrix3d, palms> palm_rotation{};    ///< palm frames (z: outward normal, into the box)
+};
+
+struct ModelDeleter {
+    void operator()(mjModel* model) const noexcept { mj_deleteModel(model); }
+};
+struct DataDeleter {
+    void operator()(mjData* data) const noexcept { mj_deleteData(data); }
+};
+using ModelPointer = std::unique_ptr<mjModel, ModelDeleter>;
+using DataPointer = std::unique_ptr<mjData, DataDeleter>;
+
+/// The MJCF model with the ids of everything the experiments use, checked once at load.
+class DualArmBoxModel {
+public:
+    explicit DualArmBoxModel(const std::string& path)
+    {
+        std::array<char, 1000> error{};
+        model_.reset(mj_loadXML(path.c_str(), nullptr, error.data(), static_cast<int>(error.size())));
+        if (!model_) {
+            throw std::runtime_error(path + ": MuJoCo cannot load it: " + error.data());
+        }
+        if (model_->nq != joints + 7 || model_->nv != joints + 6) {
+            throw std::runtime_error(path + ": expected 14 arm joints and the box's free joint (nq = 21, nv = 20), got nq = " +
+                                     std::to_string(model_->nq) + ", nv = " + std::to_string(model_->nv));
+        }
+        palm_site_ = {id(mjOBJ_SITE, "left_palm", path), id(mjOBJ_SITE, "right_palm", path)};
+        palm_geom_ = {id(mjOBJ_GEOM, "left_palm_geom", path), id(mjOBJ_GEOM, "right_palm_geom", path)};
+        box_body_ = id(mjOBJ_BODY, "box", path);
+        box_geom_ = id(mjOBJ_GEOM, "box_geom", path);
+        hold_key_ = id(mjOBJ_KEY, "hold", path);
+        const int box_joint = id(mjOBJ_JOINT, "box_free", path);
+        if (model_->jnt_qposadr[box_joint] != joints || model_->jnt_dofadr[box_joint] != joints) {
+            throw std::runtime_error(path + ": the box's free joint must follow the 14 arm joints");
+        }
+    }
+
+    mjModel* get() const noexcept { return model_.get(); }
+    int palm_site(int palm) const noexcept { return palm_site_[static_cast<std::size_t>(palm)]; }
+    int palm_geom(int palm) const noexcept { return palm_geom_[static_cast<std::size_t>(palm)]; }
+    int box_body() const noexcept { return box_body_; }
+    int box_geom() const noexcept { return box_geom_; }
+    int hold_key() const noexcept { return hold_key_; }
+
+    /// A new mjData at the keyframe "hold" (arms in q_hold, box between the palms, at rest).
+    DataPointer make_data_at_hold() const
+    {
+        DataPointer data(mj_makeData(model_.get()));
+        if (!data) {
+            throw std::runtime_error("MuJoCo cannot allocate its mjData");
+        }
+        mj_resetDataKeyframe(model_.get(), data.get(), hold_key_);
+        mj_forward(model_.get(), data.get());
+        return data;
+    }
+
+private:
+    int id(mjtObj type, const char* name, const std::string& path) const
+    {
+        const int found = mj_name2id(model_.get(), type, name);
+        if (found < 0) {
+            throw std::runtime_error(path + ": has no " + mju_type2Str(type) + " named '" + name + "'");
+        }
+        return found;
+    }
+
+    ModelPointer model_;
+    std::array<int, palms> palm_site_{};
+    std::array<int, palms> palm_geom_{};
+    int box_body_ = -1;
+    int box_geom_ = -1;
+    int hold_key_ = -1;
+};
+
+/// Runs the position- and velocity-dependent stages MuJoCo needs for M, h, J and Jdot qdot on
+/// `data` (its qpos, qvel): forward kinematics, composite inertia and the bias by RNE. No
+/// collision detection, so it serves any state of the arms (the rigid plant's RK4 stages).
+inline void compute_arm_stages(const mjModel* model, mjData* data) noexcept
+{
+    mj_kinematics(model, data);
+    mj_comPos(model, data);
+    mj_crb(model, data);
+    mj_comVel(model, data);
+    mj_rne(model, data, 0, data->qfrc_bias);
+}
+
+/// Reads M, h, J, Jdot qdot and the palm frames of the arms from `data`, whose stages are current
+/// (compute_arm_stages, or mj_step1 / mj_forward). Jdot qdot is the palms' acceleration at
+/// qdd = 0: with qacc zeroed, mj_rnePostConstraint then mj_objectAcceleration (MuJoCo 2.2.2; it
+/// reports [angular; linear] with the world's -g acceleration in the linear part, which is added
+/// back). It overwrites data->qacc and the RNE accelerations; mj_step2 recomputes both.
+/// `model` is `world`'s model or a copy of it (ids from `world`); `scratch` must hold nv * nv
+/// numbers (the full inertia) and 6 * nv (the Jacobians).
+inline void read_arm_terms(const DualArmBoxModel& world, const mjModel* model, mjData* data, ArmTerms& terms,
+                           mjtNum* scratch) noexcept
+{
+    const int nv = model->nv;
+    mj_fullM(model, scratch, data->qM);
+    for (int row = 0; row < joints; ++row) {
+        for (int col = 0; col < joints; ++col) {
+            terms.inertia(row, col) = scratch[row * nv + col];
+        }
+        terms.bias(row) = data->qfrc_bias[row];
+    }
+    mjtNum* linear = scratch;
+    mjtNum* angular = scratch + 3 * nv;
+    mju_zero(data->qacc, nv);
+    mj_rnePostConstraint(model, data);
+    for (int palm = 0; palm < palms; ++palm) {
+        const int site = world.palm_site(palm);
+        mj_jacSite(model, data, linear, angular, site);
+        for (int axis = 0; axis < 3; ++axis) {
+            for (int col = 0; col < joints; ++col) {
+                terms.jacobian(6 * palm + axis, col) = linear[axis * nv + col];
+                terms.jacobian(6 * palm + 3 + axis, col) = angular[axis * nv + col];
+            }
+        }
+        std::array<mjtNum, 6> acceleration{};
+        mj_objectAcceleration(model, data, mjOBJ_SITE, site, acceleration.data(), 0);
+        for (int axis = 0; axis < 3; ++axis) {
+            terms.jacobian_rate_qdot(6 * palm + axis) = acceleration[static_cast<std::size_t>(3 + axis)] + model->opt.gravity[axis];
+            terms.jacobian_rate_qdot(6 * palm + 3 + axis) = acceleration[static_cast<std::size_t>(axis)];
+        }
+        const mjtNum* position = data->site_xpos + 3 * site;
+        const mjtNum* rotation = data->site_xmat + 9 * site;  // row-major
+        terms.palm_position[static_cast<std::size_t>(palm)] = Eigen::Vector3d(position[0], position[1], position[2]);
+        terms.palm_rotation[static_cast<std::size_t>(palm)] =
+            Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(rotation);
+    }
+}
+
+}  // namespace box_example

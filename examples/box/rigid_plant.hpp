@@ -1,0 +1,319 @@
+// The exact rigid-grasp plant of the dual-arm box (docs/dual-arm-box.md, "The rigid plant"): the
+// two arms plus the box with its TRUE mass and inertia, each palm welded to the box. The
+// accelerations and the true contact wrenches come from coopdyn's Udwadia-Kalaba solution (paper
+// (18)-(19), coopdyn::udwadia_kalaba) applied in joint space, integrated with RK4 at the
+// controller's rate.
+//
+// Coordinates: the arms' q (14), the box's centre p and orientation q_o; velocities qdot, the
+// centre's velocity v and the angular velocity w, both in {w}. Unconstrained dynamics
+//
+//     M(q) qdd = tau - h(q, qdot)
+//     m a = m g + F_e,        I_w alpha = T_e - w x I_w w           (the box, about its centre)
+//
+// and, per palm i, the weld: the palm's contact point moves with the box point r_i = R_o c_i and
+// turns with the box,
+//
+//     J_i qdd + Jdot_i qdot = [a + alpha x r_i + w x (w x r_i); alpha]  - Baumgarte terms,
+//
+// i.e. A [qdd; a; alpha] = b with A_i = [J_i^lin, -I, S(r_i); J_i^ang, 0, -I]. The constraint
+// force h = A^T lambda: lambda_i is the wrench the box applies to palm i, so palm i applies
+// w_i = -lambda_i to the box (about its contact point, {w}). Integration drift of the weld is
+// corrected by Baumgarte stabilisation (critically damped at `stabilisation_frequency`).
+//
+// This header belongs to the examples (it depends on MuJoCo for the arms' M, h, J), not to the
+// library.
+#pragma once
+
+#include "mujoco_arms.hpp"
+
+#include <coopdyn/dynamics/udwadia_kalaba.hpp>
+#include <coopdyn/spatial/quaternion.hpp>
+#include <coopdyn/spatial/skew.hpp>
+
+#include <Eigen/Geometry>
+#include <Eigen/QR>
+
+#include <array>
+#include <vector>
+
+namespace box_example {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+constexpr int plant_velocities = joints + 6;  ///< qdot (14), v (3), w (3)
+using PlantVector = Eigen::Matrix<double, plant_velocities, 1>;
+using PlantMatrix = Eigen::Matrix<double, plant_velocities, plant_velocities>;
+using WeldMatrix = Eigen::Matrix<double, 6 * palms, plant_velocities>;
+/// Rate of the positions: qdot (14), the centre's velocity (3), the quaternion's rate (4, Eigen's
+/// coeffs order x, y, z, w).
+using PositionRate = Eigen::Matrix<double, joints + 7, 1>;
+
+/// The arms and the box at one instant.
+struct PlantState {
+    JointVector q = JointVector::Zero();
+    JointVector qdot = JointVector::Zero();
+    Eigen::Vector3d box_position = Eigen::Vector3d::Zero();
+    Eigen::Quaterniond box_orientation = Eigen::Quaterniond::Identity();
+    Eigen::Vector3d box_velocity = Eigen::Vector3d::Zero();          ///< of the centre, {w}
+    Eigen::Vector3d box_angular_velocity = Eigen::Vector3d::Zero();  ///< {w}
+};
+
+/// What the weld does at one state: accelerations and the palms' true wrenches on the box.
+struct RigidGraspSolution {
+    JointVector joint_acceleration = JointVector::Zero();
+    Vector6d box_acceleration = Vector6d::Zero();  ///< [a; alpha] of the centre, {w}
+    /// Palm i's wrench [f; t] on the box about its contact point, {w}.
+    std::array<Vector6d, palms> contact_wrench{};
+};
+
+/// The box's true inertia (unknown to the controller).
+struct BoxInertia {
+    double mass = 0.7;
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();  ///< about the centre, box frame
+};
+
+/// The box of the MJCF with `mass`: its inertia (principal, the model's body frame) scaled to it.
+inline BoxInertia box_inertia(const DualArmBoxModel& world, double mass)
+{
+    const mjModel* model = world.get();
+    const int body = world.box_body();
+    BoxInertia box;
+    box.mass = mass;
+    const Eigen::Quaterniond principal(model->body_iquat[4 * body], model->body_iquat[4 * body + 1],
+                                       model->body_iquat[4 * body + 2], model->body_iquat[4 * body + 3]);
+    const Eigen::Matrix3d axes = principal.normalized().toRotationMatrix();
+    const Eigen::Vector3d moments(model->body_inertia[3 * body], model->body_inertia[3 * body + 1],
+                                  model->body_inertia[3 * body + 2]);
+    box.inertia = (mass / model->body_mass[body]) * axes * moments.asDiagonal() * axes.transpose();
+    return box;
+}
+
+class RigidGraspPlant {
+public:
+    /// Starts from `initial` (arms and box as in the MuJoCo data, e.g. the keyframe "hold") and
+    /// welds each palm to the box where it touches it there.
+    RigidGraspPlant(const DualArmBoxModel& world, const mjData& initial, const BoxInertia& box,
+                    double stabilisation_frequency = 50.0)
+        : world_(world),
+          data_(mj_makeData(world.get())),
+          scratch_(static_cast<std::size_t>(6 * world.get()->nv + world.get()->nv * world.get()->nv)),
+          box_(box),
+          period_(world.get()->opt.timestep),
+          stiffness_(stabilisation_frequency * stabilisation_frequency),
+          damping_(2.0 * stabilisation_frequency)
+    {
+        if (!data_) {
+            throw std::runtime_error("MuJoCo cannot allocate its mjData");
+        }
+        mj_copyData(data_.get(), world.get(), &initial);
+        for (int j = 0; j < joints; ++j) {
+            state_.q(j) = initial.qpos[j];
+            state_.qdot(j) = initial.qvel[j];
+        }
+        const mjtNum* box_pose = initial.qpos + joints;
+        state_.box_position = Eigen::Vector3d(box_pose[0], box_pose[1], box_pose[2]);
+        state_.box_orientation = Eigen::Quaterniond(box_pose[3], box_pose[4], box_pose[5], box_pose[6]).normalized();
+        const Eigen::Matrix3d box_rotation = state_.box_orientation.toRotationMatrix();
+        state_.box_velocity = Eigen::Vector3d(initial.qvel[joints], initial.qvel[joints + 1], initial.qvel[joints + 2]);
+        state_.box_angular_velocity =
+            box_rotation * Eigen::Vector3d(initial.qvel[joints + 3], initial.qvel[joints + 4], initial.qvel[joints + 5]);
+        evaluate_terms(state_, terms_);
+        for (std::size_t i = 0; i < palms; ++i) {
+            weld_point_[i] = box_rotation.transpose() * (terms_.palm_position[i] - state_.box_position);
+            weld_rotation_[i] = Eigen::Quaterniond(box_rotation.transpose() * terms_.palm_rotation[i]).normalized();
+        }
+    }
+
+    // The plant interface the experiment drives (the same as MujocoPlant's).
+    double time() const noexcept { return time_; }
+    void begin_tick() noexcept {}
+    const Eigen::Vector3d& box_position() const noexcept { return state_.box_position; }
+    const Eigen::Quaterniond& box_orientation() const noexcept { return state_.box_orientation; }
+    Vector6d box_twist() const noexcept
+    {
+        Vector6d twist;
+        twist << state_.box_velocity, state_.box_angular_velocity;
+        return twist;
+    }
+    /// [a; alpha] of the box in the last step (zero before the first).
+    const Vector6d& box_acceleration() const noexcept { return solution_.box_acceleration; }
+    const JointVector& joint_positions() const noexcept { return state_.q; }
+    const JointVector& joint_velocities() const noexcept { return state_.qdot; }
+    /// One step of the controller's period under tau and the box wrench.
+    void end_tick(const JointVector& tau, const Vector6d& box_wrench)
+    {
+        step(tau, box_wrench, period_);
+        time_ += period_;
+    }
+    /// Palm i's true wrench on the box, about its contact point, {w}, at the state of the last
+    /// tick's start (the state the controller saw).
+    const Vector6d& measured_contact_wrench(int palm) const noexcept
+    {
+        return solution_.contact_wrench[static_cast<std::size_t>(palm)];
+    }
+    int contact_points(int) const noexcept { return 1; }
+    double box_mass() const noexcept { return box_.mass; }
+
+    const PlantState& state() const noexcept { return state_; }
+    /// M, h, J, Jdot qdot and the palm frames at state().
+    const ArmTerms& arm_terms() const noexcept { return terms_; }
+    /// The weld's solution at the start of the last step (the state the controller saw).
+    const RigidGraspSolution& solution() const noexcept { return solution_; }
+    /// Where palm i is welded to the box, in the box frame.
+    const Eigen::Vector3d& weld_point(int palm) const noexcept { return weld_point_[static_cast<std::size_t>(palm)]; }
+    const BoxInertia& box() const noexcept { return box_; }
+    /// A mass placed on the box (docs/dual-arm-box.md, "Add mass"): the box's mass and inertia
+    /// about its centre grow in proportion.
+    void set_box_mass(double mass) noexcept
+    {
+        box_.inertia *= mass / box_.mass;
+        box_.mass = mass;
+    }
+    /// The weld's violation: the largest palm position error (m) and rotation error (rad).
+    std::array<double, 2> weld_error() const noexcept { return weld_error_; }
+
+    /// One RK4 step of `dt` under the joint torques `tau` and the wrench `box_wrench` = [F_e; T_e]
+    /// on the box's centre ({w}), both held over the step.
+    void step(const JointVector& tau, const Vector6d& box_wrench, double dt)
+    {
+        std::array<PlantVector, 4> acceleration{};
+        std::array<PositionRate, 4> velocity{};
+        PlantState stage = state_;
+        ArmTerms stage_terms = terms_;
+        const std::array<double, 4> fraction{0.0, 0.5, 0.5, 1.0};
+        for (std::size_t k = 0; k < 4; ++k) {
+            if (k > 0) {
+                stage = advanced(velocity[k - 1], acceleration[k - 1], fraction[k] * dt);
+                evaluate_terms(stage, stage_terms);
+            }
+            RigidGraspSolution stage_solution;
+            solve(stage, stage_terms, tau, box_wrench, stage_solution, /*with_wrenches=*/k == 0);
+            if (k == 0) {
+                solution_ = stage_solution;
+            }
+            velocity[k] << stage.qdot, stage.box_velocity,
+                coopdyn::quaternion_derivative_world(stage.box_orientation, stage.box_angular_velocity).coeffs();
+            acceleration[k] << stage_solution.joint_acceleration, stage_solution.box_acceleration;
+        }
+        const PositionRate mean_velocity = (velocity[0] + 2.0 * velocity[1] + 2.0 * velocity[2] + velocity[3]) / 6.0;
+        const PlantVector mean_acceleration =
+            (acceleration[0] + 2.0 * acceleration[1] + 2.0 * acceleration[2] + acceleration[3]) / 6.0;
+        state_ = advanced(mean_velocity, mean_acceleration, dt);
+        evaluate_terms(state_, terms_);
+        weld_error_ = current_weld_error();
+    }
+
+    /// The weld's accelerations and (with_wrenches) the palms' wrenches at `state` (terms
+    /// evaluated there) under tau and the box wrench: the Udwadia-Kalaba solution of the stacked
+    /// system.
+    void solve(const PlantState& state, const ArmTerms& terms, const JointVector& tau, const Vector6d& box_wrench,
+               RigidGraspSolution& out, bool with_wrenches = true) const
+    {
+        const Eigen::Matrix3d box_rotation = state.box_orientation.toRotationMatrix();
+        const Eigen::Matrix3d inertia_world = box_rotation * box_.inertia * box_rotation.transpose();
+        const Eigen::Vector3d& w = state.box_angular_velocity;
+        const Eigen::Vector3d gravity(world_.get()->opt.gravity[0], world_.get()->opt.gravity[1],
+                                      world_.get()->opt.gravity[2]);
+
+        PlantMatrix inertia = PlantMatrix::Zero();
+        inertia.topLeftCorner<joints, joints>() = terms.inertia;
+        inertia.block<3, 3>(joints, joints) = box_.mass * Eigen::Matrix3d::Identity();
+        inertia.block<3, 3>(joints + 3, joints + 3) = inertia_world;
+        PlantVector unconstrained;
+        unconstrained << tau - terms.bias, box_.mass * gravity + box_wrench.head<3>(),
+            box_wrench.tail<3>() - w.cross(inertia_world * w);
+
+        WeldMatrix weld = WeldMatrix::Zero();
+        StackVector rate;
+        const Eigen::Quaterniond& box_orientation = state.box_orientation;
+        for (std::size_t i = 0; i < palms; ++i) {
+            const Eigen::Index row = static_cast<Eigen::Index>(6 * i);
+            const Eigen::Vector3d r = box_rotation * weld_point_[i];
+            weld.block<6, joints>(row, 0) = terms.jacobian.middleRows<6>(row);
+            weld.block<3, 3>(row, joints) = -Eigen::Matrix3d::Identity();
+            weld.block<3, 3>(row, joints + 3) = coopdyn::skew(r);
+            weld.block<3, 3>(row + 3, joints + 3) = -Eigen::Matrix3d::Identity();
+            // Baumgarte: drive the weld's position and velocity errors to zero.
+            const Eigen::Vector3d position_error = terms.palm_position[i] - (state.box_position + r);
+            const Eigen::Quaterniond welded_orientation = box_orientation * weld_rotation_[i];
+            const Eigen::Vector3d rotation_error = coopdyn::quaternion_log(
+                Eigen::Quaterniond(terms.palm_rotation[i]) * welded_orientation.conjugate());
+            const Vector6d palm_twist = terms.jacobian.middleRows<6>(row) * state.qdot;
+            Vector6d velocity_error;
+            velocity_error << palm_twist.head<3>() - (state.box_velocity + w.cross(r)), palm_twist.tail<3>() - w;
+            Vector6d pose_error;
+            pose_error << position_error, rotation_error;
+            Vector6d weld_rate = -terms.jacobian_rate_qdot.segment<6>(row);
+            weld_rate.head<3>() += w.cross(w.cross(r));
+            rate.segment<6>(row) = weld_rate - damping_ * velocity_error - stiffness_ * pose_error;
+        }
+        const PlantVector constraint_force = coopdyn::udwadia_kalaba(inertia, weld, rate, unconstrained);
+        const PlantVector acceleration = inertia.llt().solve(unconstrained + constraint_force);
+        out.joint_acceleration = acceleration.head<joints>();
+        out.box_acceleration = acceleration.tail<6>();
+        if (!with_wrenches) {
+            return;
+        }
+        // h = A^T lambda (A has full row rank while the arms are not singular).
+        const StackVector lambda =
+            Eigen::ColPivHouseholderQR<Eigen::Matrix<double, plant_velocities, 6 * palms>>(weld.transpose())
+                .solve(constraint_force);
+        for (std::size_t i = 0; i < palms; ++i) {
+            out.contact_wrench[i] = -lambda.segment<6>(static_cast<Eigen::Index>(6 * i));
+        }
+    }
+
+private:
+    void evaluate_terms(const PlantState& state, ArmTerms& terms)
+    {
+        for (int j = 0; j < joints; ++j) {
+            data_->qpos[j] = state.q(j);
+            data_->qvel[j] = state.qdot(j);
+        }
+        compute_arm_stages(world_.get(), data_.get());
+        read_arm_terms(world_, world_.get(), data_.get(), terms, scratch_.data());
+    }
+
+    PlantState advanced(const PositionRate& velocity, const PlantVector& acceleration, double dt) const
+    {
+        PlantState next = state_;
+        next.q += dt * velocity.head<joints>();
+        next.qdot += dt * acceleration.head<joints>();
+        next.box_position += dt * velocity.segment<3>(joints);
+        next.box_orientation.coeffs() += dt * velocity.tail<4>();
+        next.box_orientation.normalize();
+        next.box_velocity += dt * acceleration.segment<3>(joints);
+        next.box_angular_velocity += dt * acceleration.tail<3>();
+        return next;
+    }
+
+    std::array<double, 2> current_weld_error() const
+    {
+        std::array<double, 2> worst{0.0, 0.0};
+        const Eigen::Matrix3d box_rotation = state_.box_orientation.toRotationMatrix();
+        for (std::size_t i = 0; i < palms; ++i) {
+            const Eigen::Vector3d r = box_rotation * weld_point_[i];
+            worst[0] = std::max(worst[0], (terms_.palm_position[i] - state_.box_position - r).norm());
+            const Eigen::Quaterniond welded = state_.box_orientation * weld_rotation_[i];
+            worst[1] = std::max(
+                worst[1], coopdyn::quaternion_log(Eigen::Quaterniond(terms_.palm_rotation[i]) * welded.conjugate()).norm());
+        }
+        return worst;
+    }
+
+    const DualArmBoxModel& world_;
+    DataPointer data_;
+    std::vector<mjtNum> scratch_;
+    BoxInertia box_;
+    double period_;
+    double time_ = 0.0;
+    double stiffness_;
+    double damping_;
+    PlantState state_;
+    ArmTerms terms_;
+    RigidGraspSolution solution_;
+    std::array<Eigen::Vector3d, palms> weld_point_{};
+    std::array<Eigen::Quaterniond, palms> weld_rotation_{};
+    std::array<double, 2> weld_error_{0.0, 0.0};
+};
+
+}  // namespace box_example

@@ -1,0 +1,185 @@
+// The dual-arm box's plants (examples/box, docs/dual-arm-box.md) against physics they were not
+// derived from:
+// - Jdot qdot read from MuJoCo (mj_rnePostConstraint + mj_objectAcceleration) against central
+//   differences of J(q) qdot along q(t) = q + t qdot;
+// - the rigid plant: each palm stays welded; the box obeys Newton-Euler under the reported palm
+//   wrenches, and each arm obeys M qdd + h = tau - J^T w under them; the total mechanical energy
+//   of arms and box is conserved when no torque acts (the weld's forces do no work);
+// - the MuJoCo plant: the palms' measured contact wrenches and the person's force give the box's
+//   acceleration by Newton's second law.
+#include "box_experiment.hpp"
+#include "mujoco_plant.hpp"
+#include "rigid_plant.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <random>
+#include <vector>
+
+namespace {
+
+using namespace box_example;
+
+const DualArmBoxModel& world()
+{
+    static const DualArmBoxModel model(COOPDYN_BOX_MJCF);
+    return model;
+}
+
+ArmTerms terms_at(const JointVector& q, const JointVector& qdot)
+{
+    const DataPointer data = world().make_data_at_hold();
+    for (int j = 0; j < joints; ++j) {
+        data->qpos[j] = q(j);
+        data->qvel[j] = qdot(j);
+    }
+    compute_arm_stages(world().get(), data.get());
+    ArmTerms terms;
+    std::vector<mjtNum> scratch(static_cast<std::size_t>(6 * world().get()->nv + world().get()->nv * world().get()->nv));
+    read_arm_terms(world(), world().get(), data.get(), terms, scratch.data());
+    return terms;
+}
+
+TEST(BoxArmTerms, JacobianRateTimesVelocityMatchesCentralDifferences)
+{
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> angle(-1.5, 1.5), speed(-2.0, 2.0);
+    double worst = 0.0;
+    for (int trial = 0; trial < 10; ++trial) {
+        JointVector q, qdot;
+        for (int j = 0; j < joints; ++j) {
+            q(j) = angle(rng);
+            qdot(j) = speed(rng);
+        }
+        const ArmTerms terms = terms_at(q, qdot);
+        const double step = 1e-6;
+        const StackVector ahead = terms_at(q + step * qdot, qdot).jacobian * qdot;
+        const StackVector behind = terms_at(q - step * qdot, qdot).jacobian * qdot;
+        const StackVector difference = (ahead - behind) / (2.0 * step);
+        const double error = (terms.jacobian_rate_qdot - difference).norm() / std::max(1.0, difference.norm());
+        worst = std::max(worst, error);
+    }
+    EXPECT_LT(worst, 1e-7);
+    RecordProperty("worst_relative_error", std::to_string(worst));
+}
+
+/// The mechanical energy of arms and box: kinetic (1/2 qdot^T M qdot + the box's) plus the
+/// potential of every body's mass (MuJoCo's body masses at their centres of mass).
+double energy(const RigidGraspPlant& plant)
+{
+    const PlantState& state = plant.state();
+    const DataPointer data = world().make_data_at_hold();
+    for (int j = 0; j < joints; ++j) {
+        data->qpos[j] = state.q(j);
+    }
+    compute_arm_stages(world().get(), data.get());
+    const ArmTerms& terms = plant.arm_terms();
+    const BoxInertia& box = plant.box();
+    const Eigen::Matrix3d rotation = state.box_orientation.toRotationMatrix();
+    double kinetic = 0.5 * state.qdot.dot(terms.inertia * state.qdot) +
+                     0.5 * box.mass * state.box_velocity.squaredNorm() +
+                     0.5 * state.box_angular_velocity.dot(rotation * box.inertia * rotation.transpose() *
+                                                          state.box_angular_velocity);
+    double potential = box.mass * 9.81 * state.box_position.z();
+    for (int body = 1; body < world().get()->nbody; ++body) {
+        if (body != world().box_body()) {
+            potential += world().get()->body_mass[body] * 9.81 * data->xipos[3 * body + 2];
+        }
+    }
+    return kinetic + potential;
+}
+
+TEST(RigidGraspPlant, ConservesEnergyWithoutTorquesAndKeepsTheWeld)
+{
+    const DataPointer start = world().make_data_at_hold();
+    RigidGraspPlant plant(world(), *start, box_inertia(world(), 0.7));
+    const double initial = energy(plant);
+    double worst_weld = 0.0;
+    for (int tick = 0; tick < 500; ++tick) {  // 0.5 s of free fall of the whole closed chain
+        plant.end_tick(JointVector::Zero(), Vector6d::Zero());
+        worst_weld = std::max(worst_weld, plant.weld_error()[0]);
+    }
+    const double speed = plant.state().qdot.norm();
+    EXPECT_GT(speed, 0.5);  // the arms really fell
+    // RK4 at 1 ms conserves the energy of this smooth motion to about 1e-9 of it; the weld's
+    // Baumgarte term keeps the palms on the box to well below a micrometre while everything falls.
+    const double drift = std::abs(energy(plant) - initial) / (1.0 + std::abs(initial));
+    EXPECT_LT(drift, 1e-7);
+    EXPECT_LT(worst_weld, 1e-7);
+    std::printf("energy drift %.3g (relative), weld error %.3g m, arm speed %.3g rad/s\n", drift, worst_weld, speed);
+}
+
+TEST(RigidGraspPlant, PalmWrenchesSatisfyNewtonEulerOfBoxAndArms)
+{
+    const DataPointer start = world().make_data_at_hold();
+    RigidGraspPlant plant(world(), *start, box_inertia(world(), 1.3));
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> torque(-20.0, 20.0), force(-30.0, 30.0);
+    double worst_box = 0.0, worst_arms = 0.0;
+    for (int tick = 0; tick < 200; ++tick) {
+        JointVector tau;
+        for (int j = 0; j < joints; ++j) {
+            tau(j) = torque(rng);
+        }
+        Vector6d push;
+        push << force(rng), force(rng), force(rng), 0.1 * force(rng), 0.1 * force(rng), 0.1 * force(rng);
+        const PlantState state = plant.state();
+        const ArmTerms terms = plant.arm_terms();
+        plant.end_tick(tau, push);
+        const RigidGraspSolution& solution = plant.solution();
+        // The box: m a = m g + F + sum f_i; I alpha + w x I w = T + sum (r_i x f_i + t_i).
+        const BoxInertia& box = plant.box();
+        const Eigen::Matrix3d rotation = state.box_orientation.toRotationMatrix();
+        const Eigen::Matrix3d inertia = rotation * box.inertia * rotation.transpose();
+        const Eigen::Vector3d& w = state.box_angular_velocity;
+        Eigen::Vector3d force_sum = box.mass * Eigen::Vector3d(0, 0, -9.81) + push.head<3>();
+        Eigen::Vector3d moment_sum = push.tail<3>();
+        JointVector arm_side = terms.inertia * solution.joint_acceleration + terms.bias - tau;
+        for (std::size_t i = 0; i < palms; ++i) {
+            const Vector6d& wrench = solution.contact_wrench[i];
+            force_sum += wrench.head<3>();
+            moment_sum += (terms.palm_position[i] - state.box_position).cross(wrench.head<3>()) + wrench.tail<3>();
+            arm_side += terms.jacobian.middleRows<6>(static_cast<Eigen::Index>(6 * i)).transpose() * wrench;
+        }
+        const Vector6d& a = solution.box_acceleration;
+        worst_box = std::max(worst_box, (box.mass * a.head<3>() - force_sum).norm() / (1.0 + force_sum.norm()));
+        worst_box = std::max(worst_box, (inertia * a.tail<3>() + w.cross(inertia * w) - moment_sum).norm() /
+                                            (1.0 + moment_sum.norm()));
+        worst_arms = std::max(worst_arms, arm_side.norm() / (1.0 + tau.norm()));
+    }
+    // Relative residuals; the 20-coordinate weld system's conditioning (joint inertias from 1e-3
+    // to 10 kg m^2) costs a few digits of the 1e-16 rounding.
+    EXPECT_LT(worst_box, 1e-7);
+    EXPECT_LT(worst_arms, 1e-7);
+    std::printf("Newton-Euler residual: box %.3g, arms %.3g (relative)\n", worst_box, worst_arms);
+}
+
+TEST(MujocoPlant, MeasuredPalmWrenchesGiveTheBoxsAcceleration)
+{
+    MujocoPlant plant(world(), PlantFriction{});
+    plant.set_box_mass(0.9);
+    const Grasp grasp = hold_grasp(world());
+    BoxScenario scenario;
+    scenario.duration = 1.0;
+    scenario.box_mass = 0.9;
+    scenario.push = Push{};
+    scenario.push->start = 0.2;
+    scenario.push->force = 20.0;
+    scenario.push->ramp = 0.2;
+    scenario.push->hold = 0.2;
+    const ExperimentRun run = run_experiment(plant, scenario, grasp);
+    ASSERT_FALSE(run.dropped);
+    double worst = 0.0;
+    for (const TickLog& row : run.log) {
+        Eigen::Vector3d force = 0.9 * Eigen::Vector3d(0, 0, -9.81) + row.disturbance.head<3>();
+        for (std::size_t i = 0; i < palms; ++i) {
+            force += row.measured_world[i].head<3>();
+        }
+        worst = std::max(worst, (0.9 * row.box_acceleration - force).norm());
+    }
+    EXPECT_LT(worst, 1e-6);
+    std::printf("Newton's second law of the box from the measured contact forces: %.3g N\n", worst);
+}
+
+}  // namespace

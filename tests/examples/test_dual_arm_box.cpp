@@ -1,0 +1,295 @@
+// End-to-end tests of examples/box/dual_arm_box (docs/dual-arm-box.md): the program runs the four
+// shipped experiments on both plants as a user would, and its CSV logs are checked against what
+// the physics must show: the box is held by friction in MuJoCo (slip below 1 mm, no drop), the
+// rigid plant's true contact wrenches stay inside the true friction cone, the squeeze rises when
+// the box is pushed and never falls while mass is added, the circle is tracked outside the
+// person's hold, the contact QP is never infeasible, and on the rigid plant the measured contact
+// forces agree with the QP's prediction to the controller's model error (what it does not know of
+// the box's mass and the person's force). Bad options and scenario files fail with their messages
+// before anything runs.
+#include "common/csv_table.hpp"
+#include "program_runner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using example_common::CsvTable;
+using example_tests::contains;
+using example_tests::ProgramRun;
+using example_tests::quote;
+
+const std::string program = DUAL_ARM_BOX_EXE;
+const std::string box_dir = COOPDYN_BOX_DIR;
+const fs::path output_root = DUAL_ARM_BOX_TEST_OUTPUT;
+const std::vector<std::string> experiments{"hold", "push", "add_mass", "circle"};
+
+/// All four shipped experiments on both plants, run once for the suite.
+class DualArmBox : public ::testing::Test {
+protected:
+    static void SetUpTestSuite()
+    {
+        directory_ = example_tests::fresh_directory(output_root, "all");
+        run_ = example_tests::run_program(program, directory_, "--plant both --no-plots --quiet --output out");
+    }
+    static CsvTable log(const std::string& experiment, const std::string& plant)
+    {
+        return CsvTable((directory_ / "out" / (experiment + "_" + plant + ".csv")).string());
+    }
+    static inline fs::path directory_;
+    static inline ProgramRun run_;
+};
+
+double column_max(const CsvTable& table, const std::string& column)
+{
+    const std::vector<double> values = table.numbers(column);
+    return *std::max_element(values.begin(), values.end());
+}
+
+double column_min(const CsvTable& table, const std::string& column)
+{
+    const std::vector<double> values = table.numbers(column);
+    return *std::min_element(values.begin(), values.end());
+}
+
+TEST_F(DualArmBox, RunsEveryExperimentOnBothPlantsAndPrintsTheTable)
+{
+    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    for (const std::string& experiment : experiments) {
+        for (const char* plant : {"mujoco", "rigid"}) {
+            EXPECT_TRUE(contains(run_.output, experiment)) << run_.output;
+            EXPECT_TRUE(fs::exists(directory_ / "out" / (experiment + "_" + plant + ".csv")));
+            EXPECT_TRUE(fs::exists(directory_ / "out" / (experiment + "_" + plant + ".gp")));
+        }
+    }
+    EXPECT_FALSE(contains(run_.output, "DROPPED")) << run_.output;
+    EXPECT_TRUE(contains(run_.output, "paper")) << run_.output;
+}
+
+TEST_F(DualArmBox, MujocoPlantHoldsTheBoxByFrictionInEveryExperiment)
+{
+    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    for (const std::string& experiment : experiments) {
+        const CsvTable table = log(experiment, "mujoco");
+        const double slip = std::max(column_max(table, "left_slip"), column_max(table, "right_slip"));
+        EXPECT_LT(slip, 1e-3) << experiment;
+        // No drop: the whole scenario was simulated.
+        EXPECT_GT(table.rows(), 3000u) << experiment;
+    }
+}
+
+TEST_F(DualArmBox, RigidPlantTrueWrenchesStayInsideTheTrueFrictionCone)
+{
+    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    for (const std::string& experiment : experiments) {
+        const CsvTable table = log(experiment, "rigid");
+        EXPECT_GE(std::min(column_min(table, "left_true_margin"), column_min(table, "right_true_margin")), 0.0)
+            << experiment;
+    }
+}
+
+TEST_F(DualArmBox, ContactQpIsNeverInfeasibleInTheShippedScenarios)
+{
+    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    for (const std::string& experiment : experiments) {
+        for (const char* plant : {"mujoco", "rigid"}) {
+            const CsvTable table = log(experiment, plant);
+            for (std::size_t row = 0; row < table.rows(); ++row) {
+                ASSERT_EQ(table.text(row, "qp_status"), "solved") << experiment << " " << plant << " row " << row;
+                ASSERT_EQ(table.text(row, "status"), "ok") << experiment << " " << plant << " row " << row;
+            }
+        }
+    }
+}
+
+// Lin et al. Fig. 6 (top): about 70 N at rest, about 110 N while pushed with about 40 N, back after.
+TEST_F(DualArmBox, SqueezeRisesWhenPushedAndFallsBackAfterwards)
+{
+    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    for (const char* plant : {"mujoco", "rigid"}) {
+        const CsvTable table = log("push", plant);
+        const std::vector<double> time = table.numbers("time");
+        const std::vector<double> push = table.numbers("person_fz");
+        double rest = 0.0, pushed = 0.0, after = 0.0;
+        for (std::size_t row = 0; row < table.rows(); ++row) {
+            const double normal = 0.5 * (table.number(row, "left_meas_fz") + table.number(row, "right_meas_fz"));
+            if (time[row] < 0.9) {
+                rest = std::max(rest, normal);
+            }
+            if (push[row] < -39.0) {
+                pushed = std::max(pushed, normal);
+            }
+            if (time[row] > time.back() - 0.2) {
+                after = std::max(after, normal);
+            }
+        }
+        EXPECT_NEAR(rest, 70.0, 0.5) << plant;    // the scenario's minimum normal force
+        EXPECT_GT(pushed, 100.0) << plant;        // (40 N + m g) / (2 mu) = 117 N with mu = 0.2
+        EXPECT_NEAR(after, 70.0, 1.0) << plant;
+    }
+}
+
+// Lin et al. Fig. 6 (bottom): the squeeze never falls while masses are added, and rises once the
+// load needs more than the minimum normal force (with mu = 0.2 and 70 N: above 2.85 kg in all).
+TEST_F(DualArmBox, SqueezeNeverFallsWhileMassIsAdded)
+{
+    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    for (const char* plant : {"mujoco", "rigid"}) {
+        const CsvTable table = log("add_mass", plant);
+        const std::vector<double> mass = table.numbers("box_mass");
+        // The settled squeeze of each mass step (the last 0.2 s before the next mass).
+        std::vector<double> settled;
+        double previous_mass = mass.front();
+        double last = 0.0;
+        for (std::size_t row = 0; row < table.rows(); ++row) {
+            if (mass[row] != previous_mass) {
+                settled.push_back(last);
+                previous_mass = mass[row];
+            }
+            last = 0.5 * (table.number(row, "left_pred_fz") + table.number(row, "right_pred_fz"));
+        }
+        settled.push_back(last);
+        ASSERT_EQ(settled.size(), 6u) << plant;
+        // "Never falls" to 0.01 N: at the minimum the QP's answer carries the solver's rounding
+        // and the moment weighting's trade (up to about 1e-3 N).
+        for (std::size_t k = 1; k < settled.size(); ++k) {
+            EXPECT_GE(settled[k], settled[k - 1] - 0.01) << plant << " mass step " << k;
+        }
+        EXPECT_NEAR(settled.front(), 70.0, 0.01) << plant;
+        EXPECT_GT(settled.back(), 75.0) << plant;  // 3.2 kg: m g / (2 mu) = 78.5 N
+        // Never below the minimum while the load grows.
+        EXPECT_GE(std::min(column_min(table, "left_pred_fz"), column_min(table, "right_pred_fz")), 70.0 - 1e-6)
+            << plant;
+    }
+}
+
+// Lin et al. Fig. 8: outside the person's hold the box follows the circle, below it by about its
+// uncompensated weight m g / K_z = 0.7 * 9.81 / 100 = 6.9 cm.
+TEST_F(DualArmBox, CircleIsTrackedOutsideThePersonsHold)
+{
+    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    for (const char* plant : {"mujoco", "rigid"}) {
+        const CsvTable table = log("circle", plant);
+        double outside = 0.0, during = 0.0;
+        for (std::size_t row = 0; row < table.rows(); ++row) {
+            const double t = table.number(row, "time");
+            const double error = std::hypot(table.number(row, "y") - table.number(row, "y_d"),
+                                            table.number(row, "z") - table.number(row, "z_d"));
+            if (t >= 3.0 && t < 5.5) {  // the hold (3-4 s) and 1.5 s to return
+                during = std::max(during, error);
+            } else {
+                outside = std::max(outside, error);
+            }
+        }
+        EXPECT_LT(outside, 0.09) << plant;
+        EXPECT_GT(during, outside) << plant;  // the person really held the box off its path
+    }
+}
+
+// On the rigid plant the only difference between the QP's predicted contact forces and the true
+// ones is what the controller's external-wrench estimate L(7) misses: the box's mass (unknown to
+// it) times its acceleration, and the person's force, against the estimate from the filtered
+// displacement. Model error per tick: |F_true - F_x| with F_true = F_person + m (g - a); each
+// palm's force error stays within it.
+TEST_F(DualArmBox, RigidPlantContactForcesAgreeWithThePredictionToTheModelError)
+{
+    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    double worst_ratio = 0.0;
+    double worst_error = 0.0;
+    for (const std::string& experiment : experiments) {
+        const CsvTable table = log(experiment, "rigid");
+        for (std::size_t row = 0; row < table.rows(); ++row) {
+            const auto at = [&](const char* column) { return table.number(row, column); };
+            const double m = at("box_mass");
+            const double ex = at("person_fx") - m * at("ax") - at("est_fx");
+            const double ey = at("person_fy") - m * at("ay") - at("est_fy");
+            const double ez = at("person_fz") - m * (9.81 + at("az")) - at("est_fz");
+            const double model_error = std::sqrt(ex * ex + ey * ey + ez * ez);
+            for (const char* palm : {"left", "right"}) {
+                const std::string p = palm;
+                const double dx = table.number(row, p + "_pred_fx") - table.number(row, p + "_meas_fx");
+                const double dy = table.number(row, p + "_pred_fy") - table.number(row, p + "_meas_fy");
+                const double dz = table.number(row, p + "_pred_fz") - table.number(row, p + "_meas_fz");
+                const double error = std::sqrt(dx * dx + dy * dy + dz * dz);
+                worst_error = std::max(worst_error, error);
+                worst_ratio = std::max(worst_ratio, error / (model_error + 1e-3));
+                EXPECT_LE(error, model_error + 1e-3) << experiment << " row " << row;
+                if (error > model_error + 1e-3) {
+                    return;
+                }
+            }
+        }
+    }
+    RecordProperty("worst_force_error_N", std::to_string(worst_error));
+    RecordProperty("worst_error_over_model_error", std::to_string(worst_ratio));
+}
+
+TEST(DualArmBoxInput, MalformedScenariosFailWithFileJsonPathAndProblem)
+{
+    const fs::path directory = example_tests::fresh_directory(output_root, "malformed");
+    std::ifstream shipped(box_dir + "/scenarios/push.json");
+    const std::string push((std::istreambuf_iterator<char>(shipped)), std::istreambuf_iterator<char>());
+    ASSERT_FALSE(push.empty());
+    const auto replaced = [&](const std::string& from, const std::string& to) {
+        std::string text = push;
+        const std::size_t at = text.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        return text.replace(at, from.size(), to);
+    };
+    struct Case {
+        std::string file, text, expected;
+    };
+    const std::vector<Case> cases{
+        {"syntax.json", "{ \"name\": ", "syntax.json: (top level):"},
+        {"negative.json", replaced("\"force\": 40.0", "\"force\": -40"), "negative.json: push.force: must be positive"},
+        {"huge.json", replaced("\"duration\": 13.0", "\"duration\": 1e400"), "huge.json: duration:"},
+        {"unknown.json", replaced("\"ramp\": 1.0", "\"rampe\": 1.0"), "unknown.json: push.rampe: unknown field"},
+        {"misspelt.json", replaced("\"push\": {", "\"pushed\": {"), "misspelt.json: pushed: unknown field"},
+        {"name.json", replaced("\"name\": \"push\"", "\"name\": \"../escaped\""), "name.json: name:"},
+        {"type.json", replaced("\"box_mass\": 0.7", "\"box_mass\": \"heavy\""), "type.json: box_mass: expected a number"},
+    };
+    for (const Case& c : cases) {
+        std::ofstream(directory / c.file) << c.text;
+        const ProgramRun result =
+            example_tests::run_program(program, directory, "--scenario " + c.file + " --no-plots --quiet --output out");
+        EXPECT_EQ(result.exit_code, 3) << c.file << ": " << result.output;
+        EXPECT_TRUE(contains(result.output, c.expected)) << c.file << ": " << result.output;
+        EXPECT_FALSE(fs::exists(directory / "out")) << c.file;
+    }
+}
+
+TEST(DualArmBoxInput, InvalidOptionsAreRefusedBeforeAnythingRuns)
+{
+    const fs::path directory = example_tests::fresh_directory(output_root, "options");
+    for (const std::string options :
+         {"--duration nan", "--duration -1", "--duration inf", "--friction nan", "--friction 0", "--friction 1e400",
+          "--plant foo", "--experiment juggle", "--seed -1", "--output ''", "--no-such-option"}) {
+        const std::string output = contains(options, "--output") ? "" : " --output out";
+        const ProgramRun result = example_tests::run_program(program, directory, options + output + " --no-plots");
+        EXPECT_EQ(result.exit_code, 2) << options << ": " << result.output;
+        EXPECT_LT(result.output.size(), 600u) << options << ": " << result.output;
+        EXPECT_FALSE(fs::exists(directory / "out")) << options;
+    }
+}
+
+TEST(DualArmBoxInput, HelpNamesTheShippedFilesRelativeToTheRepository)
+{
+    const fs::path directory = example_tests::fresh_directory(output_root, "help");
+    const ProgramRun help = example_tests::run_program(program, directory, "--help");
+    EXPECT_EQ(help.exit_code, 0) << help.output;
+    EXPECT_TRUE(contains(help.output, "examples/box/scenarios")) << help.output;
+    EXPECT_FALSE(contains(help.output, box_dir)) << help.output;
+    for (const char* option : {"--plant", "--experiment", "--duration", "--friction", "--seed", "--output"}) {
+        EXPECT_TRUE(contains(help.output, option)) << option;
+    }
+}
+
+}  // namespace
