@@ -235,6 +235,107 @@ private:
     Eigen::Vector3d state_ = Eigen::Vector3d::Zero();
 };
 
+/// What the person does to the box (BoxScenario's push, person_hold and person_tremor): the wrench
+/// [F; T] on the box's centre at time t.
+class Person {
+public:
+    Person(const BoxScenario& scenario, unsigned long long seed, double period)
+        : scenario_(scenario), tremor_(scenario.person_tremor, seed, period)
+    {
+    }
+
+    Vector6d wrench(double t, const Eigen::Vector3d& box_position, const Eigen::Vector3d& box_velocity)
+    {
+        Vector6d wrench = Vector6d::Zero();
+        const Eigen::Vector3d trembling = tremor_.next();
+        if (scenario_.push) {
+            const double force = push_force(*scenario_.push, t);
+            wrench.head<3>() = force * scenario_.push->direction;
+            if (force > 0.0) {
+                wrench.head<3>() += trembling;
+            }
+        }
+        if (scenario_.person_hold) {
+            // A grab holds the box where it was when grabbed.
+            const PersonHold& hold = *scenario_.person_hold;
+            const bool holding = t >= hold.start && t < hold.start + hold.duration;
+            if (holding && !holding_) {
+                grab_point_ = box_position;
+            }
+            holding_ = holding;
+            if (holding) {
+                wrench.head<3>() +=
+                    -hold.stiffness * (box_position - grab_point_) - hold.damping * box_velocity + trembling;
+            }
+        }
+        return wrench;
+    }
+
+private:
+    const BoxScenario& scenario_;
+    Tremor tremor_;
+    Eigen::Vector3d grab_point_ = Eigen::Vector3d::Zero();
+    bool holding_ = false;
+};
+
+/// The controller's input from the plant's state: the arms' terms, the box's measured pose and
+/// twist, and its acceleration for L(7), the plant's last one low-passed as on a robot (a
+/// soft-contact simulation's raw acceleration is as spiky as a real accelerometer's).
+template <typename Plant>
+void read_plant(const Plant& plant, const ArmTerms& terms, double filter_gain, Vector6d& filtered_acceleration,
+                ControllerInput& input)
+{
+    input.inertia = terms.inertia;
+    input.bias = terms.bias;
+    input.jacobian = terms.jacobian;
+    input.jacobian_rate_qdot = terms.jacobian_rate_qdot;
+    input.positions = plant.joint_positions();
+    input.velocities = plant.joint_velocities();
+    input.object.pose.position = plant.box_position();
+    input.object.pose.orientation = plant.box_orientation();
+    input.object.twist = plant.box_twist();
+    filtered_acceleration += filter_gain * (plant.box_acceleration() - filtered_acceleration);
+    input.object_acceleration = filtered_acceleration;
+}
+
+/// Clamps tau to the joints' torque limits; returns max_j |tau_j| / limit_j.
+inline double saturate(JointVector& tau, const JointVector& limit) noexcept
+{
+    double use = 0.0;
+    for (int j = 0; j < joints; ++j) {
+        tau(j) = std::clamp(tau(j), -limit(j), limit(j));
+        use = std::max(use, std::abs(tau(j)) / limit(j));
+    }
+    return use;
+}
+
+/// Each palm's predicted and measured wrench (contact frame), the measured one's true friction
+/// margin, and the slip: how far the box's centre moved in the palm's contact plane (the palm's
+/// x-y; along the normal the soft contact's penetration changes with the squeeze) since
+/// `box_in_palm` was taken.
+template <typename Plant>
+void log_palms(const Plant& plant, const ArmTerms& terms, const ControllerData& data,
+               const coopdyn::ContactFriction<double>& friction, const std::array<Eigen::Vector3d, palms>& box_in_palm,
+               const Eigen::Vector3d& box_position, TickLog& row)
+{
+    for (std::size_t i = 0; i < palms; ++i) {
+        const auto palm = static_cast<int>(i);
+        row.predicted[i] = data.contact_frame_wrenches.col(palm);
+        const Eigen::Matrix3d& rotation = terms.palm_rotation[i];
+        const Vector6d& world = plant.measured_contact_wrench(palm);
+        row.measured_world[i] = world;
+        row.measured[i] << rotation.transpose() * world.head<3>(), rotation.transpose() * world.tail<3>();
+        row.measured_margin[i] = coopdyn::friction_margin(friction, row.measured[i]);
+        const Eigen::Vector3d now = rotation.transpose() * (box_position - terms.palm_position[i]);
+        row.slip[i] = (now - box_in_palm[i]).head<2>().norm();
+    }
+}
+
+/// Runs `scenario` on `plant` (MujocoPlant or RigidGraspPlant) from the grasp at its current
+/// state, one plant step per 1 ms controller tick. `progress(fraction)` is called every simulated
+/// tenth of a second. The palms first press into the box for settle_seconds (not logged, no
+/// disturbance): in MuJoCo the keyframe's palms touch the box without force, and the soft contact
+/// takes a few ticks to build up the commanded squeeze.
 template <typename Plant>
 ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Grasp& grasp, unsigned long long seed = 1,
                              const std::function<void(double)>& progress = {})
@@ -247,27 +348,19 @@ ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Gr
         true_friction(scenario.plant_friction, scenario.controller.patch_half_size);
     JointVector limit;
     limit << torque_limits(), torque_limits();
-
-    // The box's centre in each palm's frame at t = 0: slip is how far it moved from there.
-    std::array<Eigen::Vector3d, palms> box_in_palm{};
+    const double cutoff = scenario.controller.acceleration_cutoff;
+    const double filter_gain = cutoff > 0.0 ? 1.0 - std::exp(-2.0 * lwr4_pi * cutoff * controller_period) : 0.0;
+    Vector6d filtered_acceleration = Vector6d::Zero();
+    Person person(scenario, seed, controller_period);
+    std::array<Eigen::Vector3d, palms> box_in_palm{};  // the box's centre in each palm's frame at t = 0
 
     ExperimentRun run;
-    const double period = 0.001;
-    const auto ticks = static_cast<long>(std::llround(scenario.duration / period));
+    const auto ticks = static_cast<long>(std::llround(scenario.duration / controller_period));
+    const auto settle_ticks = static_cast<long>(std::llround(settle_seconds / controller_period));
     run.log.reserve(static_cast<std::size_t>(ticks));
-    Vector6d filtered_acceleration = Vector6d::Zero();
-    const double cutoff = scenario.controller.acceleration_cutoff;
-    const double filter_gain = cutoff > 0.0 ? 1.0 - std::exp(-2.0 * 3.14159265358979323846 * cutoff * period) : 0.0;
-    Tremor tremor(scenario.person_tremor, seed, period);
-    Eigen::Vector3d grab_point = Eigen::Vector3d::Zero();
-    bool grabbed = false;
     const auto wall_start = std::chrono::steady_clock::now();
-    // The palms first press into the box for settle_seconds (not logged, no disturbance): in
-    // MuJoCo the keyframe's palms touch the box without force, and the soft contact takes a few
-    // ticks to build up the commanded squeeze.
-    const auto settle_ticks = static_cast<long>(std::llround(settle_seconds / period));
-    for (long tick = -settle_ticks; tick < ticks; ++tick) {
-        const double t = static_cast<double>(tick) * period;
+    for (long tick = -settle_ticks; tick < ticks && !run.dropped; ++tick) {
+        const double t = static_cast<double>(tick) * controller_period;
         if (scenario.added_mass) {
             const double mass = scenario.box_mass + added_mass(*scenario.added_mass, t);
             if (mass != plant.box_mass()) {
@@ -278,19 +371,7 @@ ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Gr
         // A copy: the rigid plant re-evaluates its terms at the next state in end_tick, and the log
         // needs the palms where the controller saw them.
         const ArmTerms terms = plant.arm_terms();
-        input.inertia = terms.inertia;
-        input.bias = terms.bias;
-        input.jacobian = terms.jacobian;
-        input.jacobian_rate_qdot = terms.jacobian_rate_qdot;
-        input.positions = plant.joint_positions();
-        input.velocities = plant.joint_velocities();
-        input.object.pose.position = plant.box_position();
-        input.object.pose.orientation = plant.box_orientation();
-        input.object.twist = plant.box_twist();
-        // L(7) needs the box's acceleration: the plant's last one, low-passed as on a robot (a
-        // soft-contact simulation's raw acceleration is as spiky as a real accelerometer's).
-        filtered_acceleration += filter_gain * (plant.box_acceleration() - filtered_acceleration);
-        input.object_acceleration = filtered_acceleration;
+        read_plant(plant, terms, filter_gain, filtered_acceleration, input);
         const Desired desired = desired_motion(scenario, grasp.box, t);
         input.desired_pose = desired.pose;
         input.desired_twist = desired.twist;
@@ -299,38 +380,10 @@ ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Gr
         const auto tick_start = std::chrono::steady_clock::now();
         JointVector tau = coopdyn::controller_tick(controller, data, input);
         run.tick_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tick_start).count();
-
-        TickLog row;
-        for (int j = 0; j < joints; ++j) {
-            const double bound = limit(j);
-            tau(j) = std::clamp(tau(j), -bound, bound);
-            row.torque_use = std::max(row.torque_use, std::abs(tau(j)) / bound);
-        }
-
-        // What the person does to the box: a push, or a grab that holds it where it was.
-        Vector6d disturbance = Vector6d::Zero();
-        const Eigen::Vector3d trembling = tremor.next();
-        if (scenario.push) {
-            const double force = push_force(*scenario.push, t);
-            disturbance.head<3>() = force * scenario.push->direction;
-            if (force > 0.0) {
-                disturbance.head<3>() += trembling;
-            }
-        }
-        if (scenario.person_hold) {
-            const PersonHold& hold = *scenario.person_hold;
-            const bool holding = t >= hold.start && t < hold.start + hold.duration;
-            if (holding && !grabbed) {
-                grab_point = plant.box_position();
-            }
-            grabbed = holding;
-            if (holding) {
-                disturbance.head<3>() += -hold.stiffness * (plant.box_position() - grab_point) -
-                                         hold.damping * plant.box_twist().template head<3>() + trembling;
-            }
-        }
+        const double torque_use = saturate(tau, limit);
+        const Vector6d disturbance =
+            person.wrench(t, input.object.pose.position, input.object.twist.template head<3>());
         plant.end_tick(tau, disturbance);
-
         if (tick < 0) {
             continue;
         }
@@ -340,42 +393,31 @@ ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Gr
                     terms.palm_rotation[i].transpose() * (input.object.pose.position - terms.palm_position[i]);
             }
         }
+
+        TickLog row;
         row.time = t;
         row.box_position = input.object.pose.position;
         row.desired_position = desired.pose.position;
-        row.orientation_error =
-            coopdyn::quaternion_log(Eigen::Quaterniond(input.object.pose.orientation * desired.pose.orientation.conjugate()))
-                .norm();
+        row.orientation_error = coopdyn::quaternion_log(Eigen::Quaterniond(input.object.pose.orientation *
+                                                                           desired.pose.orientation.conjugate()))
+                                    .norm();
         row.external_wrench = data.external_wrench;
         row.disturbance = disturbance;
         row.box_acceleration = plant.box_acceleration().template head<3>();
         row.predicted_margin = data.tightest_margin;
-        for (std::size_t i = 0; i < palms; ++i) {
-            const auto palm = static_cast<int>(i);
-            row.predicted[i] = data.contact_frame_wrenches.col(palm);
-            const Eigen::Matrix3d& rotation = terms.palm_rotation[i];
-            const Vector6d& world = plant.measured_contact_wrench(palm);
-            row.measured_world[i] = world;
-            row.measured[i] << rotation.transpose() * world.head<3>(), rotation.transpose() * world.tail<3>();
-            row.measured_margin[i] = coopdyn::friction_margin(friction, row.measured[i]);
-            // Slip: how far the box's centre moved in the palm's contact plane (the palm's x-y;
-            // along the normal the soft contact's penetration changes with the squeeze).
-            const Eigen::Vector3d now =
-                rotation.transpose() * (input.object.pose.position - terms.palm_position[i]);
-            row.slip[i] = (now - box_in_palm[i]).head<2>().norm();
-        }
+        log_palms(plant, terms, data, friction, box_in_palm, input.object.pose.position, row);
         row.status = data.status;
         row.qp_status = data.qp_status;
         row.qp_iterations = data.qp_iterations;
         row.motion_torque = data.motion_torque;
         row.squeeze_torque = data.squeeze_torque;
+        row.torque_use = torque_use;
         row.box_mass = plant.box_mass();
         run.log.push_back(row);
 
         if (std::max(row.slip[0], row.slip[1]) > drop_slip) {
             run.dropped = true;
             run.dropped_at = t;
-            break;
         }
         if (progress && tick % 100 == 0) {
             progress(static_cast<double>(tick) / static_cast<double>(ticks));

@@ -22,6 +22,8 @@ namespace box_example {
 constexpr int arm_joints = 7;
 constexpr int joints = 2 * arm_joints;  ///< Q: left arm (qpos/qvel 0-6), right arm (7-13)
 constexpr int palms = 2;                ///< K: 0 = left palm, 1 = right palm
+/// The controller's period (s): one plant step per 1 kHz tick, so the MJCF's timestep.
+constexpr double controller_period = 0.001;
 
 using JointVector = Eigen::Matrix<double, joints, 1>;
 using JointMatrix = Eigen::Matrix<double, joints, joints>;
@@ -60,6 +62,10 @@ public:
         if (model_->nq != joints + 7 || model_->nv != joints + 6) {
             throw std::runtime_error(path + ": expected 14 arm joints and the box's free joint (nq = 21, nv = 20), got nq = " +
                                      std::to_string(model_->nq) + ", nv = " + std::to_string(model_->nv));
+        }
+        if (model_->opt.timestep != controller_period) {
+            throw std::runtime_error(path + ": the controller runs at 1 kHz, one step per tick: the timestep must be 0.001, got " +
+                                     std::to_string(model_->opt.timestep));
         }
         palm_site_ = {id(mjOBJ_SITE, "left_palm", path), id(mjOBJ_SITE, "right_palm", path)};
         palm_geom_ = {id(mjOBJ_GEOM, "left_palm_geom", path), id(mjOBJ_GEOM, "right_palm_geom", path)};

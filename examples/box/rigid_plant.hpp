@@ -97,7 +97,7 @@ public:
           data_(mj_makeData(world.get())),
           scratch_(static_cast<std::size_t>(6 * world.get()->nv + world.get()->nv * world.get()->nv)),
           box_(box),
-          period_(world.get()->opt.timestep),
+          period_(controller_period),
           stiffness_(stabilisation_frequency * stabilisation_frequency),
           damping_(2.0 * stabilisation_frequency)
     {

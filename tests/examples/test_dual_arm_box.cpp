@@ -1,5 +1,5 @@
-// End-to-end tests of examples/box/dual_arm_box (docs/dual-arm-box.md): the program runs the four
-// shipped experiments on both plants as a user would, and its CSV logs are checked against what
+// End-to-end tests of examples/box/dual_arm_box (docs/dual-arm-box.md): the program runs the
+// shipped experiments on the plants each test needs, as a user would, and its CSV logs are checked against what
 // the physics must show: the box is held by friction in MuJoCo (slip below 1 mm, no drop), the
 // rigid plant's true contact wrenches stay inside the true friction cone, the squeeze rises when
 // the box is pushed and never falls while mass is added, the circle is tracked outside the
@@ -32,20 +32,25 @@ const std::string box_dir = COOPDYN_BOX_DIR;
 const fs::path output_root = DUAL_ARM_BOX_TEST_OUTPUT;
 const std::vector<std::string> experiments{"hold", "push", "add_mass", "circle"};
 
-/// All four shipped experiments on both plants, run once for the suite.
+/// Runs the program in a directory of the test's own: ctest runs each test in a process of its
+/// own, several at a time.
 class DualArmBox : public ::testing::Test {
 protected:
-    static void SetUpTestSuite()
+    void run(const std::string& selection, const std::string& plant)
     {
-        directory_ = example_tests::fresh_directory(output_root, "all");
-        run_ = example_tests::run_program(program, directory_, "--plant both --no-plots --quiet --output out");
+        directory_ = example_tests::fresh_directory(
+            output_root, ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        run_ = example_tests::run_program(program, directory_,
+                                          "--experiment " + selection + " --plant " + plant +
+                                              " --no-plots --quiet --output out");
+        ASSERT_EQ(run_.exit_code, 0) << run_.output;
     }
-    static CsvTable log(const std::string& experiment, const std::string& plant)
+    CsvTable log(const std::string& experiment, const std::string& plant) const
     {
         return CsvTable((directory_ / "out" / (experiment + "_" + plant + ".csv")).string());
     }
-    static inline fs::path directory_;
-    static inline ProgramRun run_;
+    fs::path directory_;
+    ProgramRun run_;
 };
 
 double column_max(const CsvTable& table, const std::string& column)
@@ -62,7 +67,7 @@ double column_min(const CsvTable& table, const std::string& column)
 
 TEST_F(DualArmBox, RunsEveryExperimentOnBothPlantsAndPrintsTheTable)
 {
-    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    ASSERT_NO_FATAL_FAILURE(run("all", "both"));
     for (const std::string& experiment : experiments) {
         for (const char* plant : {"mujoco", "rigid"}) {
             EXPECT_TRUE(contains(run_.output, experiment)) << run_.output;
@@ -76,7 +81,7 @@ TEST_F(DualArmBox, RunsEveryExperimentOnBothPlantsAndPrintsTheTable)
 
 TEST_F(DualArmBox, MujocoPlantHoldsTheBoxByFrictionInEveryExperiment)
 {
-    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    ASSERT_NO_FATAL_FAILURE(run("all", "mujoco"));
     for (const std::string& experiment : experiments) {
         const CsvTable table = log(experiment, "mujoco");
         const double slip = std::max(column_max(table, "left_slip"), column_max(table, "right_slip"));
@@ -88,7 +93,7 @@ TEST_F(DualArmBox, MujocoPlantHoldsTheBoxByFrictionInEveryExperiment)
 
 TEST_F(DualArmBox, RigidPlantTrueWrenchesStayInsideTheTrueFrictionCone)
 {
-    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    ASSERT_NO_FATAL_FAILURE(run("all", "rigid"));
     for (const std::string& experiment : experiments) {
         const CsvTable table = log(experiment, "rigid");
         EXPECT_GE(std::min(column_min(table, "left_true_margin"), column_min(table, "right_true_margin")), 0.0)
@@ -98,7 +103,7 @@ TEST_F(DualArmBox, RigidPlantTrueWrenchesStayInsideTheTrueFrictionCone)
 
 TEST_F(DualArmBox, ContactQpIsNeverInfeasibleInTheShippedScenarios)
 {
-    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    ASSERT_NO_FATAL_FAILURE(run("all", "both"));
     for (const std::string& experiment : experiments) {
         for (const char* plant : {"mujoco", "rigid"}) {
             const CsvTable table = log(experiment, plant);
@@ -113,7 +118,7 @@ TEST_F(DualArmBox, ContactQpIsNeverInfeasibleInTheShippedScenarios)
 // Lin et al. Fig. 6 (top): about 70 N at rest, about 110 N while pushed with about 40 N, back after.
 TEST_F(DualArmBox, SqueezeRisesWhenPushedAndFallsBackAfterwards)
 {
-    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    ASSERT_NO_FATAL_FAILURE(run("push", "both"));
     for (const char* plant : {"mujoco", "rigid"}) {
         const CsvTable table = log("push", plant);
         const std::vector<double> time = table.numbers("time");
@@ -141,7 +146,7 @@ TEST_F(DualArmBox, SqueezeRisesWhenPushedAndFallsBackAfterwards)
 // load needs more than the minimum normal force (with mu = 0.2 and 70 N: above 2.85 kg in all).
 TEST_F(DualArmBox, SqueezeNeverFallsWhileMassIsAdded)
 {
-    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    ASSERT_NO_FATAL_FAILURE(run("add_mass", "both"));
     for (const char* plant : {"mujoco", "rigid"}) {
         const CsvTable table = log("add_mass", plant);
         const std::vector<double> mass = table.numbers("box_mass");
@@ -175,7 +180,7 @@ TEST_F(DualArmBox, SqueezeNeverFallsWhileMassIsAdded)
 // uncompensated weight m g / K_z = 0.7 * 9.81 / 100 = 6.9 cm.
 TEST_F(DualArmBox, CircleIsTrackedOutsideThePersonsHold)
 {
-    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    ASSERT_NO_FATAL_FAILURE(run("circle", "both"));
     for (const char* plant : {"mujoco", "rigid"}) {
         const CsvTable table = log("circle", plant);
         double outside = 0.0, during = 0.0;
@@ -201,7 +206,7 @@ TEST_F(DualArmBox, CircleIsTrackedOutsideThePersonsHold)
 // palm's force error stays within it.
 TEST_F(DualArmBox, RigidPlantContactForcesAgreeWithThePredictionToTheModelError)
 {
-    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    ASSERT_NO_FATAL_FAILURE(run("all", "rigid"));
     double worst_ratio = 0.0;
     double worst_error = 0.0;
     for (const std::string& experiment : experiments) {
