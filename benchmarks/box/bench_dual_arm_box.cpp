@@ -1,0 +1,129 @@
+// The dual-arm box example's loop (examples/box, docs/dual-arm-box.md): the controller tick as the
+// experiment calls it (inputs read from MuJoCo at the hold), one MuJoCo plant tick (mj_step1,
+// reading M, h, J, Jdot qdot, mj_step2, the contact wrenches), one rigid-plant RK4 step (four
+// Udwadia-Kalaba solves), and whole experiments (counters: real-time factor).
+#include "box_experiment.hpp"
+#include "mujoco_plant.hpp"
+#include "rigid_plant.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+namespace {
+
+using namespace box_example;
+
+const DualArmBoxModel& world()
+{
+    static const DualArmBoxModel model(COOPDYN_BOX_MJCF);
+    return model;
+}
+
+BoxScenario hold_scenario(double duration)
+{
+    BoxScenario scenario;
+    scenario.duration = duration;
+    scenario.controller.minimum_normal_force = 70.0;
+    scenario.controller.translational_damping = 120.0;
+    return scenario;
+}
+
+void BM_ControllerTickInTheLoop(benchmark::State& state)
+{
+    const Grasp grasp = hold_grasp(world());
+    const Controller controller(controller_parameters(hold_scenario(1.0).controller, grasp));
+    ControllerData data(controller);
+    ControllerInput input(controller);
+    MujocoPlant plant(world(), PlantFriction{});
+    plant.begin_tick();
+    const ArmTerms& terms = plant.arm_terms();
+    input.inertia = terms.inertia;
+    input.bias = terms.bias;
+    input.jacobian = terms.jacobian;
+    input.jacobian_rate_qdot = terms.jacobian_rate_qdot;
+    input.positions = plant.joint_positions();
+    input.posture = grasp.q;
+    input.object.pose.position = plant.box_position() - Eigen::Vector3d(0, 0, 0.05);  // sagging: F_x = weight
+    input.object.pose.orientation = plant.box_orientation();
+    input.desired_pose = grasp.box;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(coopdyn::controller_tick(controller, data, input).data());
+    }
+}
+BENCHMARK(BM_ControllerTickInTheLoop);
+
+/// MuJoCo's own step of the box model (what the MuJoCo plant adds to the controller besides
+/// reading M, h, J, Jdot qdot and the contacts): the arms gravity-compensated, squeezing nothing;
+/// restarted at the keyframe every 200 steps (the box falls between the palms).
+void BM_MujocoStep(benchmark::State& state)
+{
+    const mjModel* model = world().get();
+    const DataPointer data = world().make_data_at_hold();
+    long steps = 0;
+    for (auto _ : state) {
+        for (int j = 0; j < joints; ++j) {
+            data->qfrc_applied[j] = data->qfrc_bias[j];
+        }
+        mj_step(model, data.get());
+        if (++steps % 200 == 0) {
+            mj_resetDataKeyframe(model, data.get(), world().hold_key());
+            mj_forward(model, data.get());
+        }
+    }
+}
+BENCHMARK(BM_MujocoStep)->Unit(benchmark::kMicrosecond);
+
+/// One RK4 step of the rigid plant (four joint-space Udwadia-Kalaba solves, four evaluations of
+/// the arms' terms); restarted every 200 steps.
+void BM_RigidPlantStep(benchmark::State& state)
+{
+    const DataPointer start = world().make_data_at_hold();
+    auto plant = std::make_unique<RigidGraspPlant>(world(), *start, box_inertia(world(), 0.7));
+    const JointVector tau = plant->arm_terms().bias;
+    long steps = 0;
+    for (auto _ : state) {
+        plant->end_tick(tau, Vector6d::Zero());
+        if (++steps % 200 == 0) {
+            state.PauseTiming();
+            plant = std::make_unique<RigidGraspPlant>(world(), *start, box_inertia(world(), 0.7));
+            state.ResumeTiming();
+        }
+    }
+}
+BENCHMARK(BM_RigidPlantStep)->Unit(benchmark::kMicrosecond);
+
+/// A whole hold experiment of 2 s per iteration; counter: simulated seconds per wall second.
+template <typename MakePlant>
+void run_experiment_benchmark(benchmark::State& state, MakePlant&& make_plant)
+{
+    const Grasp grasp = hold_grasp(world());
+    const BoxScenario scenario = hold_scenario(2.0);
+    double simulated = 0.0, wall = 0.0;
+    for (auto _ : state) {
+        auto plant = make_plant();
+        const ExperimentRun run = run_experiment(*plant, scenario, grasp);
+        simulated += scenario.duration + settle_seconds;
+        wall += run.wall_seconds;
+        benchmark::DoNotOptimize(run.log.data());
+    }
+    state.counters["real_time_factor"] = simulated / wall;
+    state.counters["us_per_tick"] = 1e6 * wall / (simulated / 0.001);
+}
+
+void BM_HoldExperimentMujoco(benchmark::State& state)
+{
+    run_experiment_benchmark(state, [] { return std::make_unique<MujocoPlant>(world(), PlantFriction{}); });
+}
+BENCHMARK(BM_HoldExperimentMujoco)->Unit(benchmark::kMillisecond);
+
+void BM_HoldExperimentRigid(benchmark::State& state)
+{
+    run_experiment_benchmark(state, [] {
+        const DataPointer start = world().make_data_at_hold();
+        return std::make_unique<RigidGraspPlant>(world(), *start, box_inertia(world(), 0.7));
+    });
+}
+BENCHMARK(BM_HoldExperimentRigid)->Unit(benchmark::kMillisecond);
+
+}  // namespace
