@@ -1,14 +1,16 @@
 // The dual-arm box example's loop (examples/box, docs/dual-arm-box.md): the controller tick as the
 // experiment calls it (inputs read from MuJoCo at the hold), one MuJoCo plant tick (mj_step1,
 // reading M, h, J, Jdot qdot, mj_step2, the contact wrenches), one rigid-plant RK4 step (four
-// Udwadia-Kalaba solves), and whole experiments (counters: real-time factor).
+// Udwadia-Kalaba solves), and each shipped experiment on each plant (counters: real-time factor).
 #include "box_experiment.hpp"
+#include "box_scenario_loader.hpp"
 #include "mujoco_plant.hpp"
 #include "rigid_plant.hpp"
 
 #include <benchmark/benchmark.h>
 
 #include <memory>
+#include <string>
 
 namespace {
 
@@ -20,19 +22,15 @@ const DualArmBoxModel& world()
     return model;
 }
 
-BoxScenario hold_scenario(double duration)
+BoxScenario hold_scenario()
 {
-    BoxScenario scenario;
-    scenario.duration = duration;
-    scenario.controller.minimum_normal_force = 70.0;
-    scenario.controller.translational_damping = 120.0;
-    return scenario;
+    return load_box_scenario(std::string(COOPDYN_BOX_SCENARIOS) + "/hold.json");
 }
 
 void BM_ControllerTickInTheLoop(benchmark::State& state)
 {
     const Grasp grasp = hold_grasp(world());
-    const Controller controller(controller_parameters(hold_scenario(1.0).controller, grasp));
+    const Controller controller(controller_parameters(hold_scenario().controller, grasp));
     ControllerData data(controller);
     ControllerInput input(controller);
     MujocoPlant plant(world(), PlantFriction{});
@@ -93,15 +91,18 @@ void BM_RigidPlantStep(benchmark::State& state)
 }
 BENCHMARK(BM_RigidPlantStep)->Unit(benchmark::kMicrosecond);
 
-/// A whole hold experiment of 2 s per iteration; counter: simulated seconds per wall second.
+/// A whole shipped experiment (examples/box/scenarios/NAME.json, its full duration and the 0.2 s
+/// settling) per iteration; counters: simulated seconds per wall second, and microseconds per
+/// 1 ms tick. The experiment's own clock (ExperimentRun::wall_seconds) times the loop only, not
+/// the scenario file, the plant's construction or the CSV.
 template <typename MakePlant>
-void run_experiment_benchmark(benchmark::State& state, MakePlant&& make_plant)
+void run_experiment_benchmark(benchmark::State& state, const std::string& name, MakePlant&& make_plant)
 {
     const Grasp grasp = hold_grasp(world());
-    const BoxScenario scenario = hold_scenario(2.0);
+    const BoxScenario scenario = load_box_scenario(std::string(COOPDYN_BOX_SCENARIOS) + "/" + name + ".json");
     double simulated = 0.0, wall = 0.0;
     for (auto _ : state) {
-        auto plant = make_plant();
+        auto plant = make_plant(scenario);
         const ExperimentRun run = run_experiment(*plant, scenario, grasp);
         simulated += scenario.duration + settle_seconds;
         wall += run.wall_seconds;
@@ -111,19 +112,30 @@ void run_experiment_benchmark(benchmark::State& state, MakePlant&& make_plant)
     state.counters["us_per_tick"] = 1e6 * wall / (simulated / 0.001);
 }
 
-void BM_HoldExperimentMujoco(benchmark::State& state)
+void BM_ExperimentMujoco(benchmark::State& state, const std::string& name)
 {
-    run_experiment_benchmark(state, [] { return std::make_unique<MujocoPlant>(world(), PlantFriction{}); });
-}
-BENCHMARK(BM_HoldExperimentMujoco)->Unit(benchmark::kMillisecond);
-
-void BM_HoldExperimentRigid(benchmark::State& state)
-{
-    run_experiment_benchmark(state, [] {
-        const DataPointer start = world().make_data_at_hold();
-        return std::make_unique<RigidGraspPlant>(world(), *start, box_inertia(world(), 0.7));
+    run_experiment_benchmark(state, name, [](const BoxScenario& scenario) {
+        auto plant = std::make_unique<MujocoPlant>(world(), scenario.plant_friction);
+        plant->set_box_mass(scenario.box_mass);
+        return plant;
     });
 }
-BENCHMARK(BM_HoldExperimentRigid)->Unit(benchmark::kMillisecond);
+
+void BM_ExperimentRigid(benchmark::State& state, const std::string& name)
+{
+    run_experiment_benchmark(state, name, [](const BoxScenario& scenario) {
+        const DataPointer start = world().make_data_at_hold();
+        return std::make_unique<RigidGraspPlant>(world(), *start, box_inertia(world(), scenario.box_mass));
+    });
+}
+
+BENCHMARK_CAPTURE(BM_ExperimentMujoco, hold, std::string("hold"))->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_ExperimentMujoco, push, std::string("push"))->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_ExperimentMujoco, add_mass, std::string("add_mass"))->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_ExperimentMujoco, circle, std::string("circle"))->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_ExperimentRigid, hold, std::string("hold"))->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_ExperimentRigid, push, std::string("push"))->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_ExperimentRigid, add_mass, std::string("add_mass"))->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_ExperimentRigid, circle, std::string("circle"))->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace

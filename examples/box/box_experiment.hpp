@@ -99,6 +99,22 @@ inline coopdyn::ContactFriction<double> true_friction(const PlantFriction& plant
     return friction;
 }
 
+/// A friction model's constraint rows, built once for the margins of many wrenches (the true
+/// friction's 64-facet pyramid would cost 128 sines and cosines per margin otherwise).
+struct FrictionRows {
+    static constexpr int most = coopdyn::friction_rows(coopdyn::max_pyramid_edges);
+    Eigen::Matrix<double, Eigen::Dynamic, 6, 0, most, 6> rows;
+    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, most, 1> bounds;
+
+    explicit FrictionRows(const coopdyn::ContactFriction<double>& friction)
+        : rows(coopdyn::friction_rows(friction.pyramid_edges), 6), bounds(coopdyn::friction_rows(friction.pyramid_edges))
+    {
+        coopdyn::contact_frame_friction_rows(friction, rows, bounds);
+    }
+    /// coopdyn::friction_margin of a contact-frame wrench.
+    double margin(const Vector6d& wrench) const noexcept { return coopdyn::friction_margin(rows, bounds, wrench); }
+};
+
 /// The person's force magnitude at time t (the push profile: ramps, holds, releases).
 inline double push_force(const Push& push, double t) noexcept
 {
@@ -206,8 +222,6 @@ constexpr double drop_slip = 0.05;
 /// How long the palms press into the box before t = 0 (s).
 constexpr double settle_seconds = 0.2;
 
-/// Runs `scenario` on `plant` (MujocoPlant or RigidGraspPlant) from the grasp at its current
-/// state. `progress(fraction)` is called about every simulated tenth of a second.
 /// The person's trembling hand (BoxScenario::person_tremor): white noise low-passed at 5 Hz,
 /// scaled to the RMS per axis, reproducible from the seed.
 class Tremor {
@@ -315,7 +329,7 @@ inline double saturate(JointVector& tau, const JointVector& limit) noexcept
 /// `box_in_palm` was taken.
 template <typename Plant>
 void log_palms(const Plant& plant, const ArmTerms& terms, const ControllerData& data,
-               const coopdyn::ContactFriction<double>& friction, const std::array<Eigen::Vector3d, palms>& box_in_palm,
+               const FrictionRows& friction, const std::array<Eigen::Vector3d, palms>& box_in_palm,
                const Eigen::Vector3d& box_position, TickLog& row)
 {
     for (std::size_t i = 0; i < palms; ++i) {
@@ -325,7 +339,7 @@ void log_palms(const Plant& plant, const ArmTerms& terms, const ControllerData& 
         const Vector6d& world = plant.measured_contact_wrench(palm);
         row.measured_world[i] = world;
         row.measured[i] << rotation.transpose() * world.head<3>(), rotation.transpose() * world.tail<3>();
-        row.measured_margin[i] = coopdyn::friction_margin(friction, row.measured[i]);
+        row.measured_margin[i] = friction.margin(row.measured[i]);
         const Eigen::Vector3d now = rotation.transpose() * (box_position - terms.palm_position[i]);
         row.slip[i] = (now - box_in_palm[i]).head<2>().norm();
     }
@@ -344,8 +358,7 @@ ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Gr
     ControllerData data(controller);
     ControllerInput input(controller);
     input.posture = grasp.q;
-    const coopdyn::ContactFriction<double> friction =
-        true_friction(scenario.plant_friction, scenario.controller.patch_half_size);
+    const FrictionRows friction(true_friction(scenario.plant_friction, scenario.controller.patch_half_size));
     JointVector limit;
     limit << torque_limits(), torque_limits();
     const double cutoff = scenario.controller.acceleration_cutoff;

@@ -202,11 +202,17 @@ public:
         weld_error_ = current_weld_error();
     }
 
+    /// How solve() applies (18): `automatic` takes coopdyn::try_udwadia_kalaba_full_rank (the
+    /// constraint-space inertia, multipliers directly) and falls back to the generic
+    /// coopdyn::udwadia_kalaba when the weld loses rank (an arm at a singularity); `generic`
+    /// always takes the generic form (the tests compare the two).
+    enum class WeldSolver { automatic, generic };
+
     /// The weld's accelerations and (with_wrenches) the palms' wrenches at `state` (terms
     /// evaluated there) under tau and the box wrench: the Udwadia-Kalaba solution of the stacked
     /// system.
     void solve(const PlantState& state, const ArmTerms& terms, const JointVector& tau, const Vector6d& box_wrench,
-               RigidGraspSolution& out, bool with_wrenches = true) const
+               RigidGraspSolution& out, bool with_wrenches = true, WeldSolver solver = WeldSolver::automatic) const
     {
         const Eigen::Matrix3d box_rotation = state.box_orientation.toRotationMatrix();
         const Eigen::Matrix3d inertia_world = box_rotation * box_.inertia * box_rotation.transpose();
@@ -246,17 +252,23 @@ public:
             weld_rate.head<3>() += w.cross(w.cross(r));
             rate.segment<6>(row) = weld_rate - damping_ * velocity_error - stiffness_ * pose_error;
         }
-        const PlantVector constraint_force = coopdyn::udwadia_kalaba(inertia, weld, rate, unconstrained);
-        const PlantVector acceleration = inertia.llt().solve(unconstrained + constraint_force);
+        PlantVector acceleration = PlantVector::Zero();
+        StackVector lambda = StackVector::Zero();
+        // The weld has full row rank while neither arm is singular: the constraint-space form of
+        // (18) gives the multipliers directly. At a singularity, the generic pseudo-inverse form.
+        if (solver == WeldSolver::generic ||
+            !coopdyn::try_udwadia_kalaba_full_rank(inertia, weld, rate, unconstrained, lambda, acceleration)) {
+            const PlantVector constraint_force = coopdyn::udwadia_kalaba(inertia, weld, rate, unconstrained);
+            acceleration = inertia.llt().solve(unconstrained + constraint_force);
+            // h = A^T lambda: the least-squares multipliers (unique while A has full row rank).
+            lambda = Eigen::ColPivHouseholderQR<Eigen::Matrix<double, plant_velocities, 6 * palms>>(weld.transpose())
+                         .solve(constraint_force);
+        }
         out.joint_acceleration = acceleration.head<joints>();
         out.box_acceleration = acceleration.tail<6>();
         if (!with_wrenches) {
             return;
         }
-        // h = A^T lambda (A has full row rank while the arms are not singular).
-        const StackVector lambda =
-            Eigen::ColPivHouseholderQR<Eigen::Matrix<double, plant_velocities, 6 * palms>>(weld.transpose())
-                .solve(constraint_force);
         for (std::size_t i = 0; i < palms; ++i) {
             out.contact_wrench[i] = -lambda.segment<6>(static_cast<Eigen::Index>(6 * i));
         }

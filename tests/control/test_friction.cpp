@@ -143,6 +143,47 @@ TEST(Friction, WorldFrameRowsActOnTheRotatedWrench)
     }
 }
 
+TEST(Friction, MarginIsTheDistanceToTheNearestBoundary)
+{
+    const auto friction = palm();
+    const double reach = 0.6 * std::cos(coopdyn::pi<double>() / 8);  // facets at mu cos(pi/n) f_z
+
+    // 10 N along the normal only: the nearest boundary is a centre-of-pressure plane |t_x| =
+    // delta_y f_z, at distance delta_y f_z / sqrt(1 + delta_y^2) from w (the row (+-1, -delta_y)
+    // in (t_x, f_z)); the unilateral plane is 8 N away, the facets reach f_z / sqrt(1 + reach^2).
+    Vector6d wrench = Vector6d::Zero();
+    wrench(2) = 10.0;
+    EXPECT_NEAR(coopdyn::friction_margin(friction, wrench), 0.02 * 10.0 / std::sqrt(1.0 + 0.02 * 0.02), 1e-14);
+
+    // A tangential force along facet 0's normal (angle pi/8) with no moments and a large patch:
+    // the facet binds first, at (reach f_z - |f_t|) / sqrt(1 + reach^2).
+    auto wide = friction;
+    wide.torsional_coefficient = 1.0;
+    wide.patch_half_length_x = wide.patch_half_length_y = 1.0;
+    const double tangential = 3.0;
+    wrench << tangential * std::cos(coopdyn::pi<double>() / 8), tangential * std::sin(coopdyn::pi<double>() / 8), 10.0,
+        0.0, 0.0, 0.0;
+    const double facet_distance = (reach * 10.0 - tangential) / std::sqrt(1.0 + reach * reach);
+    EXPECT_NEAR(coopdyn::friction_margin(wide, wrench), facet_distance, 1e-13);
+    // Pushed outside the pyramid along the same direction: negative, by the same formula.
+    wrench.head<2>() *= 3.0;
+    EXPECT_NEAR(coopdyn::friction_margin(wide, wrench), (reach * 10.0 - 3.0 * tangential) / std::sqrt(1.0 + reach * reach),
+                1e-13);
+    // Pulling (f_z below f_min): the unilateral row is violated by f_min - f_z.
+    wrench << 0.0, 0.0, -1.0, 0.0, 0.0, 0.0;
+    EXPECT_NEAR(coopdyn::friction_margin(wide, wrench), -3.0, 1e-14);
+
+    // Rows built once give the same margins as rebuilding them per call, for random wrenches.
+    Rows rows;
+    Bounds bounds;
+    coopdyn::contact_frame_friction_rows(friction, rows, bounds);
+    Rng rng(17);
+    for (int trial = 0; trial < 50; ++trial) {
+        const Vector6d random = coopdyn_test::random_vector(6, rng, -20.0, 20.0);
+        EXPECT_EQ(coopdyn::friction_margin(rows, bounds, random), coopdyn::friction_margin(friction, random));
+    }
+}
+
 TEST(Friction, InvalidParametersAreNamedWithTheContact)
 {
     const auto expect_refused = [](coopdyn::ContactFriction<double> friction, const std::string& parameter) {

@@ -83,6 +83,24 @@ TEST(NoAllocationSanity, EigenHeapAllocationIsDetected)
     EXPECT_EQ(fixed.eigen, 0);
 }
 
+TEST(NoAllocation, FullRankUdwadiaKalabaWithFixedSizes)
+{
+    // The dual-arm box's rigid plant: 20 coordinates, 12 weld rows.
+    Rng rng(2);
+    const Eigen::Matrix<double, 20, 20> M = random_spd(20, rng);
+    const Eigen::Matrix<double, 12, 20> A = random_matrix(12, 20, rng);
+    const Eigen::Matrix<double, 12, 1> b = random_vector(12, rng);
+    const Eigen::Matrix<double, 20, 1> h_sigma = random_vector(20, rng);
+    Eigen::Matrix<double, 12, 1> lambda;
+    Eigen::Matrix<double, 20, 1> xdd;
+    bool solved = false;
+    const Allocations solver = count_allocations(
+        [&] { solved = coopdyn::try_udwadia_kalaba_full_rank(M, A, b, h_sigma, lambda, xdd); });
+    EXPECT_TRUE(solved);
+    EXPECT_EQ(solver.operator_new, 0);
+    EXPECT_EQ(solver.eigen, 0);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Model/Data per-tick path.
 

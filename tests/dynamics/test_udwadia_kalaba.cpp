@@ -1,7 +1,8 @@
 // coopdyn::udwadia_kalaba (docs/dynamics.md, paper (18)-(19)) against references it was not
 // derived from: the KKT system of the constrained dynamics, direct minimisation of Gauss's
 // function over a null-space parameterisation of the constraint manifold, and the independent
-// subsystem of redundant / rank-deficient constraints.
+// subsystem of redundant / rank-deficient constraints. The full-row-rank form
+// (try_udwadia_kalaba_full_rank) against the same KKT system, and its refusals.
 #include "coopdyn/dynamics/udwadia_kalaba.hpp"
 
 #include "sample_systems.hpp"
@@ -23,6 +24,7 @@ using namespace coopdyn_test;
 struct Solution {
     VectorXd accelerations;
     VectorXd wrench;
+    VectorXd multipliers;  ///< lambda, wrench = A^T lambda
 };
 
 /// [[M, A^T], [A, 0]] [xdd; -lambda] = [hSigma; b], h = A^T lambda (requires full row rank A).
@@ -40,7 +42,7 @@ Solution kkt_solution(const MatrixXd& M, const MatrixXd& A, const VectorXd& b, c
     EXPECT_TRUE(lu.isInvertible());
     const VectorXd solution = lu.solve(rhs);
     const VectorXd lambda = -solution.tail(m);
-    return {solution.head(n), A.transpose() * lambda};
+    return {solution.head(n), A.transpose() * lambda, lambda};
 }
 
 /// Accelerations of the library result, xdd = M^-1 (hSigma + h), computed here.
@@ -263,6 +265,82 @@ TEST(UdwadiaKalaba, NoConstraintViolationGivesZeroWrench)
     const VectorXd b = p.A * p.M.ldlt().solve(p.h_sigma);
     const VectorXd h = coopdyn::udwadia_kalaba(p.M, p.A, b, p.h_sigma);
     EXPECT_LT(h.norm(), 1e-12 * p.h_sigma.norm());
+}
+
+// ---------------------------------------------------------------------------------------------
+// try_udwadia_kalaba_full_rank: the constraint-space form for full row rank A.
+
+TEST(UdwadiaKalabaFullRank, MatchesKktSolutionAndItsMultipliers)
+{
+    double worst_acceleration = 0.0, worst_multipliers = 0.0;
+    for (unsigned seed = 700; seed < 760; ++seed) {
+        Rng rng(seed);
+        const Index n = 6 + static_cast<Index>(seed % 25);  // 6..30
+        const Index m = random_index(rng, 1, n - 1);
+        const RandomProblem p = random_problem(rng, n, m);
+        ASSERT_EQ(Eigen::FullPivLU<MatrixXd>(p.A).rank(), m);
+
+        VectorXd lambda(m), xdd(n);
+        ASSERT_TRUE(coopdyn::try_udwadia_kalaba_full_rank(p.M, p.A, p.b, p.h_sigma, lambda, xdd)) << "seed " << seed;
+        const Solution reference = kkt_solution(p.M, p.A, p.b, p.h_sigma);
+        const double acceleration_error = relative_error(xdd, reference.accelerations);
+        const double multiplier_error = relative_error(lambda, reference.multipliers);
+        EXPECT_LT(acceleration_error, 1e-10) << "seed " << seed << " n " << n << " m " << m;
+        EXPECT_LT(multiplier_error, 1e-9) << "seed " << seed << " n " << n << " m " << m;
+        EXPECT_LT(relative_error(VectorXd(p.A.transpose() * lambda), reference.wrench), 1e-10) << "seed " << seed;
+        worst_acceleration = std::max(worst_acceleration, acceleration_error);
+        worst_multipliers = std::max(worst_multipliers, multiplier_error);
+    }
+    std::printf("[ measured ] full-rank UK vs KKT: worst relative error accelerations %.3g, multipliers %.3g\n",
+                worst_acceleration, worst_multipliers);
+}
+
+TEST(UdwadiaKalabaFullRank, FixedSizesOfTheDualArmBoxAgreeWithTheGenericSolver)
+{
+    // The rigid plant's shape (examples/box): 20 coordinates, 12 weld rows.
+    for (unsigned seed = 800; seed < 810; ++seed) {
+        Rng rng(seed);
+        const RandomProblem p = random_problem(rng, 20, 12);
+        const Eigen::Matrix<double, 20, 20> M = p.M;
+        const Eigen::Matrix<double, 12, 20> A = p.A;
+        const Eigen::Matrix<double, 12, 1> b = p.b;
+        const Eigen::Matrix<double, 20, 1> h_sigma = p.h_sigma;
+        Eigen::Matrix<double, 12, 1> lambda;
+        Eigen::Matrix<double, 20, 1> xdd;
+        ASSERT_TRUE(coopdyn::try_udwadia_kalaba_full_rank(M, A, b, h_sigma, lambda, xdd));
+        const Eigen::Matrix<double, 20, 1> h = coopdyn::udwadia_kalaba(M, A, b, h_sigma);
+        EXPECT_LT(relative_error(VectorXd(A.transpose() * lambda), VectorXd(h)), 1e-10) << "seed " << seed;
+        EXPECT_LT(relative_error(VectorXd(xdd), VectorXd(M.llt().solve(h_sigma + h))), 1e-10) << "seed " << seed;
+    }
+}
+
+TEST(UdwadiaKalabaFullRank, RefusesRankDeficientConstraintsAndIndefiniteInertiaLeavingOutputs)
+{
+    Rng rng(900);
+    const RandomProblem p = random_problem(rng, 14, 6);
+    VectorXd lambda = VectorXd::Constant(7, 7.0), xdd = VectorXd::Constant(14, 7.0);
+
+    // A row repeated: S = A M^-1 A^T is singular.
+    MatrixXd repeated(7, 14);
+    repeated << p.A, p.A.row(2);
+    VectorXd repeated_b(7);
+    repeated_b << p.b, p.b(2);
+    EXPECT_FALSE(coopdyn::try_udwadia_kalaba_full_rank(p.M, repeated, repeated_b, p.h_sigma, lambda, xdd));
+    // Nearly repeated (1e-9 apart): refused by the pivot test, not solved with huge multipliers.
+    repeated.row(6) += 1e-9 * random_vector(14, rng).transpose();
+    EXPECT_FALSE(coopdyn::try_udwadia_kalaba_full_rank(p.M, repeated, repeated_b, p.h_sigma, lambda, xdd));
+    EXPECT_TRUE((lambda.array() == 7.0).all());
+    EXPECT_TRUE((xdd.array() == 7.0).all());
+    // The generic solver handles the repeated row (same accelerations as the independent rows).
+    const VectorXd h = coopdyn::udwadia_kalaba(p.M, repeated, repeated_b, p.h_sigma);
+    EXPECT_TRUE(h.allFinite());
+
+    // An indefinite M.
+    MatrixXd indefinite = p.M;
+    indefinite(0, 0) = -1.0;
+    VectorXd lambda6 = VectorXd::Constant(6, 7.0);
+    EXPECT_FALSE(coopdyn::try_udwadia_kalaba_full_rank(indefinite, p.A, p.b, p.h_sigma, lambda6, xdd));
+    EXPECT_TRUE((lambda6.array() == 7.0).all());
 }
 
 }  // namespace

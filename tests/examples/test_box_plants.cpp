@@ -4,7 +4,8 @@
 //   differences of J(q) qdot along q(t) = q + t qdot;
 // - the rigid plant: each palm stays welded; the box obeys Newton-Euler under the reported palm
 //   wrenches, and each arm obeys M qdd + h = tau - J^T w under them; the total mechanical energy
-//   of arms and box is conserved when no torque acts (the weld's forces do no work);
+//   of arms and box is conserved when no torque acts (the weld's forces do no work); its
+//   full-rank weld solve agrees with the generic pseudo-inverse form of (18);
 // - the MuJoCo plant: the palms' measured contact wrenches and the person's force give the box's
 //   acceleration by Newton's second law.
 #include "box_experiment.hpp"
@@ -15,6 +16,7 @@
 
 #include <cstdio>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -110,20 +112,27 @@ TEST(RigidGraspPlant, ConservesEnergyWithoutTorquesAndKeepsTheWeld)
     std::printf("energy drift %.3g (relative), weld error %.3g m, arm speed %.3g rad/s\n", drift, worst_weld, speed);
 }
 
+/// Random joint torques (|tau_j| < 20 N m) and a random wrench on the box (30 N, 3 N m).
+std::pair<JointVector, Vector6d> random_drive(std::mt19937_64& rng)
+{
+    std::uniform_real_distribution<double> torque(-20.0, 20.0), force(-30.0, 30.0);
+    JointVector tau;
+    for (int j = 0; j < joints; ++j) {
+        tau(j) = torque(rng);
+    }
+    Vector6d push;
+    push << force(rng), force(rng), force(rng), 0.1 * force(rng), 0.1 * force(rng), 0.1 * force(rng);
+    return {tau, push};
+}
+
 TEST(RigidGraspPlant, PalmWrenchesSatisfyNewtonEulerOfBoxAndArms)
 {
     const DataPointer start = world().make_data_at_hold();
     RigidGraspPlant plant(world(), *start, box_inertia(world(), 1.3));
     std::mt19937_64 rng(5);
-    std::uniform_real_distribution<double> torque(-20.0, 20.0), force(-30.0, 30.0);
     double worst_box = 0.0, worst_arms = 0.0;
     for (int tick = 0; tick < 200; ++tick) {
-        JointVector tau;
-        for (int j = 0; j < joints; ++j) {
-            tau(j) = torque(rng);
-        }
-        Vector6d push;
-        push << force(rng), force(rng), force(rng), 0.1 * force(rng), 0.1 * force(rng), 0.1 * force(rng);
+        const auto [tau, push] = random_drive(rng);
         const PlantState state = plant.state();
         const ArmTerms terms = plant.arm_terms();
         plant.end_tick(tau, push);
@@ -153,6 +162,36 @@ TEST(RigidGraspPlant, PalmWrenchesSatisfyNewtonEulerOfBoxAndArms)
     EXPECT_LT(worst_box, 1e-7);
     EXPECT_LT(worst_arms, 1e-7);
     std::printf("Newton-Euler residual: box %.3g, arms %.3g (relative)\n", worst_box, worst_arms);
+}
+
+TEST(RigidGraspPlant, FullRankAndGenericWeldSolversAgree)
+{
+    // The plant's per-tick path (constraint-space form, multipliers directly) against the generic
+    // pseudo-inverse form of (18) with multipliers from a QR of A^T, along a driven motion.
+    const DataPointer start = world().make_data_at_hold();
+    RigidGraspPlant plant(world(), *start, box_inertia(world(), 2.1));
+    std::mt19937_64 rng(8);
+    double worst_acceleration = 0.0, worst_wrench = 0.0;
+    for (int tick = 0; tick < 100; ++tick) {
+        const auto [tau, push] = random_drive(rng);
+        RigidGraspSolution fast, generic;
+        plant.solve(plant.state(), plant.arm_terms(), tau, push, fast, true, RigidGraspPlant::WeldSolver::automatic);
+        plant.solve(plant.state(), plant.arm_terms(), tau, push, generic, true, RigidGraspPlant::WeldSolver::generic);
+        Eigen::Matrix<double, plant_velocities, 1> fast_acceleration, generic_acceleration;
+        fast_acceleration << fast.joint_acceleration, fast.box_acceleration;
+        generic_acceleration << generic.joint_acceleration, generic.box_acceleration;
+        worst_acceleration = std::max(worst_acceleration, (fast_acceleration - generic_acceleration).norm() /
+                                                              (1.0 + generic_acceleration.norm()));
+        for (std::size_t i = 0; i < palms; ++i) {
+            worst_wrench = std::max(worst_wrench, (fast.contact_wrench[i] - generic.contact_wrench[i]).norm() /
+                                                      (1.0 + generic.contact_wrench[i].norm()));
+        }
+        plant.end_tick(tau, push);
+    }
+    EXPECT_LT(worst_acceleration, 1e-9);
+    EXPECT_LT(worst_wrench, 1e-9);
+    std::printf("full-rank vs generic weld solve: accelerations %.3g, wrenches %.3g (relative)\n", worst_acceleration,
+                worst_wrench);
 }
 
 TEST(MujocoPlant, MeasuredPalmWrenchesGiveTheBoxsAcceleration)

@@ -119,16 +119,36 @@ void friction_rows(const ContactFriction<Scalar>& friction, const Matrix3<Scalar
     }
 }
 
+/// \brief The friction margin of a wrench w = [f; t] (contact frame) under constraint rows A w <= b
+/// built once with contact_frame_friction_rows: min_k (b_k - a_k^T w) / |a_k|. For a caller that
+/// evaluates many wrenches of one contact (a log, every tick) without rebuilding the rows.
+/// noexcept; no allocation.
+template <typename DerivedRows, typename DerivedBounds, typename DerivedWrench>
+typename DerivedRows::Scalar friction_margin(const Eigen::MatrixBase<DerivedRows>& rows,
+                                             const Eigen::MatrixBase<DerivedBounds>& bounds,
+                                             const Eigen::MatrixBase<DerivedWrench>& wrench) noexcept
+{
+    using Scalar = typename DerivedRows::Scalar;
+    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedWrench, 6);
+    COOPDYN_ASSERT(rows.cols() == 6 && bounds.size() == rows.rows(), "friction_margin: rows m x 6, bounds m");
+    const Vector6<Scalar> w = wrench;
+    Scalar margin = std::numeric_limits<Scalar>::infinity();
+    for (Index k = 0; k < rows.rows(); ++k) {
+        margin = std::min(margin, (bounds(k) - rows.row(k).dot(w)) / rows.row(k).norm());
+    }
+    return margin;
+}
+
 /// \brief The friction margin of one contact: the smallest slack of its rows, each divided by the
 /// row's norm, min_k (b_k - a_k^T w) / |a_k|, for the wrench w = [f; t] in the contact frame {c_i}.
 /// It is the distance from w to the nearest constraint boundary (in newtons for the force rows,
 /// newton-metres for the moment rows): positive inside, zero on the boundary, negative when a
 /// constraint is violated (the grasp would slip, twist or roll there). noexcept; no allocation
-/// (friction.pyramid_edges <= max_pyramid_edges).
+/// (friction.pyramid_edges <= max_pyramid_edges). It builds the rows on every call (n sines and
+/// cosines); the overload on rows and bounds reuses them.
 template <typename Scalar, typename DerivedWrench>
 Scalar friction_margin(const ContactFriction<Scalar>& friction, const Eigen::MatrixBase<DerivedWrench>& wrench) noexcept
 {
-    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedWrench, 6);
     constexpr int most_rows = friction_rows(max_pyramid_edges);
     COOPDYN_ASSERT(friction.pyramid_edges >= 3 && friction.pyramid_edges <= max_pyramid_edges,
                    "friction_margin: pyramid_edges out of range");
@@ -136,12 +156,7 @@ Scalar friction_margin(const ContactFriction<Scalar>& friction, const Eigen::Mat
     Eigen::Matrix<Scalar, Eigen::Dynamic, 6, 0, most_rows, 6> rows(count, 6);
     Eigen::Matrix<Scalar, Eigen::Dynamic, 1, 0, most_rows, 1> bounds(count);
     contact_frame_friction_rows(friction, rows, bounds);
-    const Vector6<Scalar> w = wrench;
-    Scalar margin = std::numeric_limits<Scalar>::infinity();
-    for (Index k = 0; k < count; ++k) {
-        margin = std::min(margin, (bounds(k) - rows.row(k).dot(w)) / rows.row(k).norm());
-    }
-    return margin;
+    return friction_margin(rows, bounds, wrench);
 }
 
 }  // namespace coopdyn

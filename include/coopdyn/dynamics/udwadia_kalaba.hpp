@@ -14,7 +14,9 @@
 ///
 /// This is the reference solver for any SPD M and any consistent A, b: O(n^3), and it allocates
 /// (for fixed sizes only Eigen 3.4's one temporary in CompleteOrthogonalDecomposition::solve); the
-/// per-tick path of the paper's rigid grasp is interaction_wrenches.
+/// per-tick path of the paper's rigid grasp is interaction_wrenches. For full row rank A,
+/// try_udwadia_kalaba_full_rank is the same solution through the constraint-space inertia
+/// A M^-1 A^T: faster, allocation-free with fixed sizes, and it returns the multipliers.
 #pragma once
 
 #include "coopdyn/config.hpp"
@@ -62,6 +64,71 @@ udwadia_kalaba(const Eigen::MatrixBase<DerivedM>& M, const Eigen::MatrixBase<Der
     // (A L^-T)^+ e: the minimum-norm least-squares solution of (A L^-T) y = e.
     const Eigen::CompleteOrthogonalDecomposition<Constraints> decomposition(scaled_constraints);
     return cholesky.matrixL() * Vector(decomposition.solve(constraint_violation));
+}
+
+/// \brief Full-row-rank form of (18): the multipliers lambda of h = A^T lambda and the constrained
+/// accelerations xdd, from the constraint-space inertia S = A M^-1 A^T (the Schur complement of
+/// the KKT system [[M, A^T], [A, 0]]):
+///
+///     S lambda = b - A M^-1 hSigma,        xdd = M^-1 (hSigma + A^T lambda).
+///
+/// With full row rank A this is (18) exactly (h = A^T lambda is the same wrench); it costs two
+/// Cholesky factorisations (n x n and m x m) instead of a complete orthogonal decomposition, gives
+/// lambda directly (the wrench each constraint row carries, e.g. a welded palm's contact wrench),
+/// and with fixed sizes allocates nothing. A rank test replaces the pseudo-inverse: when M is not
+/// positive definite, or S's smallest Cholesky pivot squared is below
+/// NumTraits<Scalar>::dummy_precision() (1e-12 for double) times its largest diagonal entry (A
+/// rank-deficient or nearly so, e.g. an arm at a singularity), it returns false and leaves both
+/// outputs untouched: use udwadia_kalaba, which handles any rank, then.
+/// \param lambda_out m, the multipliers (h = A^T lambda).
+/// \param acceleration_out n, the constrained accelerations.
+template <typename DerivedM, typename DerivedA, typename DerivedB, typename DerivedSigma, typename DerivedLambda,
+          typename DerivedAcceleration>
+bool try_udwadia_kalaba_full_rank(const Eigen::MatrixBase<DerivedM>& M, const Eigen::MatrixBase<DerivedA>& A,
+                                  const Eigen::MatrixBase<DerivedB>& b, const Eigen::MatrixBase<DerivedSigma>& h_sigma,
+                                  const Eigen::MatrixBase<DerivedLambda>& lambda_out,
+                                  const Eigen::MatrixBase<DerivedAcceleration>& acceleration_out) noexcept
+{
+    using Scalar = typename DerivedM::Scalar;
+    constexpr int Size = DerivedM::ColsAtCompileTime;
+    constexpr int Rows = DerivedA::RowsAtCompileTime;
+    using Square = Eigen::Matrix<Scalar, Size, Size>;
+    using Vector = Eigen::Matrix<Scalar, Size, 1>;
+    using ConstraintsTransposed = Eigen::Matrix<Scalar, Size, Rows>;
+    using ConstraintSpace = Eigen::Matrix<Scalar, Rows, Rows>;
+    using RowVector = Eigen::Matrix<Scalar, Rows, 1>;
+    COOPDYN_ASSERT(M.rows() == M.cols() && A.cols() == M.rows() && b.size() == A.rows() && h_sigma.size() == M.rows(),
+                   "try_udwadia_kalaba_full_rank: M n x n, A m x n, b m, h_sigma n");
+    COOPDYN_ASSERT(lambda_out.size() == A.rows() && acceleration_out.size() == M.rows(),
+                   "try_udwadia_kalaba_full_rank: lambda m, acceleration n");
+
+    const Eigen::LLT<Square> cholesky(M);
+    if (cholesky.info() != Eigen::Success) {
+        return false;
+    }
+    // In the Cholesky factor's coordinates: Y = L^-1 A^T and u = L^-1 hSigma, so that
+    // S = A M^-1 A^T = Y^T Y, A M^-1 hSigma = Y^T u and xdd = L^-T (u + Y lambda): two triangular
+    // solves of vectors instead of two full solves with M.
+    ConstraintsTransposed scaled_transposed = A.transpose();
+    cholesky.matrixL().solveInPlace(scaled_transposed);
+    const ConstraintSpace constraint_space = scaled_transposed.transpose().lazyProduct(scaled_transposed);
+    const Eigen::LLT<ConstraintSpace> constraint_cholesky(constraint_space);
+    if (constraint_cholesky.info() != Eigen::Success) {
+        return false;
+    }
+    const Scalar smallest_pivot = constraint_cholesky.matrixLLT().diagonal().minCoeff();
+    const Scalar largest_diagonal = constraint_space.diagonal().maxCoeff();
+    if (!(smallest_pivot * smallest_pivot > Eigen::NumTraits<Scalar>::dummy_precision() * largest_diagonal)) {
+        return false;
+    }
+    Vector scaled = h_sigma;
+    cholesky.matrixL().solveInPlace(scaled);
+    const RowVector lambda = constraint_cholesky.solve(RowVector(b - scaled_transposed.transpose() * scaled));
+    scaled.noalias() += scaled_transposed * lambda;
+    cholesky.matrixU().solveInPlace(scaled);
+    const_cast<Eigen::MatrixBase<DerivedLambda>&>(lambda_out) = lambda;
+    const_cast<Eigen::MatrixBase<DerivedAcceleration>&>(acceleration_out) = scaled;
+    return true;
 }
 
 /// \brief Constrained accelerations xdd = M^-1 (hSigma + h) with h from udwadia_kalaba.
