@@ -80,7 +80,9 @@ inline coopdyn::ControllerParameters<double> controller_parameters(const Control
         Eigen::Vector3d::Constant(settings.rotational_damping);
     parameters.posture_stiffness = Eigen::VectorXd::Constant(joints, settings.posture_stiffness);
     parameters.posture_damping = Eigen::VectorXd::Constant(joints, settings.posture_damping);
+    parameters.objective.torque_weight = settings.torque_weight;
     parameters.objective.moment_weight = settings.moment_weight;
+    parameters.objective.squeeze_weight = settings.squeeze_weight;
     return parameters;
 }
 
@@ -147,6 +149,18 @@ inline double added_mass(const AddedMass& added, double t) noexcept
     }
     const double steps = std::floor((t - added.start) / added.interval) + 1.0;
     return std::min(added.total, steps * added.step);
+}
+
+/// The heaviest static load the palms carry in `scenario` (N): the weight of the box with all its
+/// added mass plus, if a person pushes, the push force held steady.
+inline double static_load(const BoxScenario& scenario) noexcept
+{
+    const double mass = scenario.box_mass + (scenario.added_mass ? scenario.added_mass->total : 0.0);
+    Eigen::Vector3d load = mass * Eigen::Vector3d(0.0, 0.0, -9.81);
+    if (scenario.push) {
+        load += scenario.push->force * scenario.push->direction;
+    }
+    return load.norm();
 }
 
 /// The desired pose, twist and acceleration at time t (the hold pose, or the circle).

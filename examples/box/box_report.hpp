@@ -31,9 +31,13 @@ struct BoxSummary {
     double min_true_margin = 0.0;        ///< of the measured wrenches under the true friction
     double max_force_error = 0.0;        ///< max |f_predicted - f_measured| over palms and ticks, N
     /// The normal force the plant needed: |f_t| / mu_true of the measured wrenches, largest over
-    /// the run, against the Coulomb estimate W / (2 mu_true) of the heaviest load held statically.
+    /// the run, against the Coulomb estimate W / (2 mu_true) of the heaviest static load
+    /// (static_load: the box with its added mass, and a person's push held steady).
     double needed_normal = 0.0;
     double coulomb_estimate = 0.0;
+    /// The measured minimum squeeze that still holds that load (MuJoCo plant,
+    /// measure_minimum_squeeze); empty for the rigid plant or when not measured.
+    std::optional<double> minimum_squeeze;
     int qp_not_solved = 0;               ///< ticks whose contact QP was not `solved`
     int fallback_ticks = 0;              ///< ticks that used the least-violating fallback
     double max_tracking_error = 0.0;     ///< m, outside the person's hold (circle); else the whole run
@@ -53,7 +57,6 @@ inline BoxSummary summarise(const BoxScenario& scenario, const std::string& plan
     s.dropped = run.dropped;
     s.min_true_margin = std::numeric_limits<double>::infinity();
     int rest_samples = 0;
-    double heaviest = 0.0;
     for (const TickLog& row : run.log) {
         const bool held_by_person = scenario.person_hold && row.time >= scenario.person_hold->start &&
                                     row.time < scenario.person_hold->start + scenario.person_hold->duration + 1.0;
@@ -72,7 +75,6 @@ inline BoxSummary summarise(const BoxScenario& scenario, const std::string& plan
             s.needed_normal =
                 std::max(s.needed_normal, row.measured[i].head<2>().norm() / scenario.plant_friction.sliding);
         }
-        heaviest = std::max(heaviest, row.box_mass);
         s.qp_not_solved += row.qp_status == coopdyn::QpStatus::solved ? 0 : 1;
         s.fallback_ticks += row.status == coopdyn::ControlStatus::friction_infeasible ? 1 : 0;
         if (!held_by_person) {
@@ -85,7 +87,7 @@ inline BoxSummary summarise(const BoxScenario& scenario, const std::string& plan
         s.rest_normal_measured /= rest_samples;
     }
     s.simulated_seconds = run.log.empty() ? 0.0 : run.log.back().time + 0.001;
-    s.coulomb_estimate = heaviest * 9.81 / (2.0 * scenario.plant_friction.sliding);
+    s.coulomb_estimate = static_load(scenario) / (2.0 * scenario.plant_friction.sliding);
     s.real_time_factor = run.wall_seconds > 0.0 ? s.simulated_seconds / run.wall_seconds : 0.0;
     s.mean_tick_microseconds = run.log.empty() ? 0.0 : 1e6 * run.tick_seconds / static_cast<double>(run.log.size());
     return s;
@@ -225,14 +227,15 @@ inline std::string format_optional(const char* pattern, const std::optional<doub
 /// The printed table: one row per run, the paper's numbers alongside.
 inline void print_box_table(const std::vector<std::pair<BoxScenario, BoxSummary>>& runs)
 {
-    std::printf("\n%-9s %-7s %9s %9s %6s %9s %9s %6s %8s %8s %9s %9s %6s %6s\n", "", "", "rest N", "meas", "paper",
-                "peak N", "meas", "paper", "slip mm", "margin", "needed N", "W/(2mu)", "track", "RTF");
+    std::printf("\n%-9s %-7s %9s %9s %6s %9s %9s %6s %8s %8s %9s %8s %9s %6s %6s\n", "", "", "rest N", "meas", "paper",
+                "peak N", "meas", "paper", "slip mm", "margin", "needed N", "holds N", "W/(2mu)", "track", "RTF");
     for (const auto& [scenario, s] : runs) {
-        std::printf("%-9s %-7s %9.1f %9.1f %6s %9.1f %9.1f %6s %8.3f %8.2f %9.1f %9.1f %6.3f %6.0f%s\n",
+        std::printf("%-9s %-7s %9.1f %9.1f %6s %9.1f %9.1f %6s %8.3f %8.2f %9.1f %8s %9.1f %6.3f %6.0f%s\n",
                     s.experiment.c_str(), s.plant.c_str(), s.rest_normal_predicted, s.rest_normal_measured,
                     format_optional("%.0f", scenario.paper.squeeze_at_rest).c_str(), s.peak_normal_predicted,
                     s.peak_normal_measured, format_optional("%.0f", scenario.paper.squeeze_pushed).c_str(),
-                    1e3 * s.max_slip, s.min_true_margin, s.needed_normal, s.coulomb_estimate, s.max_tracking_error,
+                    1e3 * s.max_slip, s.min_true_margin, s.needed_normal,
+                    format_optional("%.1f", s.minimum_squeeze).c_str(), s.coulomb_estimate, s.max_tracking_error,
                     s.real_time_factor, s.dropped ? "  DROPPED" : "");
     }
 }

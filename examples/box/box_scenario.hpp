@@ -37,7 +37,9 @@ struct ControllerSettings {
     double rotational_damping = 4.0;         ///< D_d (N m s/rad)
     double posture_stiffness = 20.0;         ///< K_n (N m/rad), every joint
     double posture_damping = 4.0;            ///< D_n (N m s/rad)
+    double torque_weight = 1.0;              ///< SqueezeObjective::torque_weight (L(20), |tau_c|^2)
     double moment_weight = 1e4;              ///< SqueezeObjective::moment_weight (0: the paper's)
+    double squeeze_weight = 1e-6;            ///< SqueezeObjective::squeeze_weight (|B z|^2)
     /// Cut-off (Hz) of the first-order low-pass on the box's measured acceleration that feeds the
     /// external-wrench estimate L(7); 0 leaves the acceleration out (a quasi-static estimate).
     double acceleration_cutoff = 20.0;

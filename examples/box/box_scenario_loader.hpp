@@ -47,8 +47,8 @@ inline ControllerSettings controller(const JsonReader& reader, const json& objec
     reader.only_keys(object, path,
                      {"friction", "torsional_friction", "patch_half_size", "minimum_normal_force",
                       "translational_stiffness", "rotational_stiffness", "translational_damping",
-                      "rotational_damping", "posture_stiffness", "posture_damping", "moment_weight",
-                      "acceleration_cutoff"});
+                      "rotational_damping", "posture_stiffness", "posture_damping", "torque_weight",
+                      "moment_weight", "squeeze_weight", "acceleration_cutoff"});
     ControllerSettings c;
     const auto positive = [&](const json& v, const std::string& p) { return reader.positive(v, p); };
     const auto non_negative = [&](const json& v, const std::string& p) { return reader.non_negative(v, p); };
@@ -66,7 +66,13 @@ inline ControllerSettings controller(const JsonReader& reader, const json& objec
     c.rotational_damping = optional_number(reader, object, path, "rotational_damping", c.rotational_damping, non_negative);
     c.posture_stiffness = optional_number(reader, object, path, "posture_stiffness", c.posture_stiffness, non_negative);
     c.posture_damping = optional_number(reader, object, path, "posture_damping", c.posture_damping, non_negative);
+    c.torque_weight = optional_number(reader, object, path, "torque_weight", c.torque_weight, non_negative);
     c.moment_weight = optional_number(reader, object, path, "moment_weight", c.moment_weight, non_negative);
+    c.squeeze_weight = optional_number(reader, object, path, "squeeze_weight", c.squeeze_weight, non_negative);
+    if (!(c.torque_weight + c.squeeze_weight > 0.0)) {
+        reader.fail(example_common::join_path(path, "squeeze_weight"),
+                    "must be positive when torque_weight is 0 (the QP needs a positive definite objective)");
+    }
     c.acceleration_cutoff = optional_number(reader, object, path, "acceleration_cutoff", c.acceleration_cutoff,
                                             [&](const json& v, const std::string& p) {
                                                 return reader.in_range(v, p, 0.0, 500.0);  // Nyquist at 1 kHz

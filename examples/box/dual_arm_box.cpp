@@ -5,6 +5,7 @@
 // numbers and writes CSV logs, gnuplot scripts and PNG plots. docs/dual-arm-box.md.
 #include "box_report.hpp"
 #include "box_scenario_loader.hpp"
+#include "minimum_squeeze.hpp"
 #include "mujoco_plant.hpp"
 #include "rigid_plant.hpp"
 
@@ -56,6 +57,7 @@ struct CommandLine {
     std::string output = "out/box";
     bool plots = true;
     bool progress = true;
+    bool minimum_squeeze = true;  ///< measure it on the MuJoCo plant (minimum_squeeze.hpp)
 };
 
 std::vector<std::string> scenario_files(const CommandLine& command)
@@ -114,7 +116,15 @@ int run(const CommandLine& command, std::vector<BoxScenario> scenarios)
         if (mujoco) {
             MujocoPlant plant(world, scenario.plant_friction);
             plant.set_box_mass(scenario.box_mass);
-            summaries.emplace_back(scenario, run_one(plant, scenario, "mujoco", grasp, command, progress, plots));
+            BoxSummary summary = run_one(plant, scenario, "mujoco", grasp, command, progress, plots);
+            if (command.minimum_squeeze) {
+                progress.update(scenario.name + " (minimum squeeze)", 0.0);
+                if (const auto measured = measure_minimum_squeeze(world, grasp, scenario)) {
+                    summary.minimum_squeeze = measured->squeeze;
+                }
+                progress.finish();
+            }
+            summaries.emplace_back(scenario, summary);
         }
         if (rigid) {
             const DataPointer start = world.make_data_at_hold();
@@ -128,8 +138,9 @@ int run(const CommandLine& command, std::vector<BoxScenario> scenarios)
     print_box_table(summaries);
     std::printf("  rest/peak N: normal force per palm, the QP's (expected) and the plant's (measured); slip: the box "
                 "relative to the palms;\n  margin: tightest friction margin of the measured wrenches under the true "
-                "friction (N); needed N: |f_t| / mu_true,\n  against W / (2 mu_true) for the heaviest load; track: "
-                "largest |x - x_d| (m) outside a person's hold; RTF: real-time factor.\n");
+                "friction (N); needed N: |f_t| / mu_true;\n  holds N: the smallest squeeze that still holds the heaviest static "
+                "load in MuJoCo (measured); W/(2mu): its Coulomb estimate;\n  track: largest |x - x_d| (m) outside a "
+                "person's hold; RTF: real-time factor.\n");
     std::printf("logs and plot scripts: %s\n", command.output.c_str());
     bool dropped = false;
     for (const auto& entry : summaries) {
@@ -185,6 +196,10 @@ int main(int argc, char** argv)
     app.add_flag("--no-plots", no_plots, "Do not run gnuplot (the scripts are still written)");
     bool quiet = false;
     app.add_flag("--quiet", quiet, "No progress line");
+    bool no_minimum_squeeze = false;
+    app.add_flag("--no-minimum-squeeze", no_minimum_squeeze,
+                 "Do not measure the smallest squeeze that holds the box in MuJoCo (a bisection of short holds, "
+                 "about 1 s per experiment)");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& error) {
@@ -193,6 +208,7 @@ int main(int argc, char** argv)
     }
     command.plots = !no_plots;
     command.progress = !quiet;
+    command.minimum_squeeze = !no_minimum_squeeze;
 
     std::vector<BoxScenario> scenarios;
     try {

@@ -7,8 +7,11 @@
 //   of arms and box is conserved when no torque acts (the weld's forces do no work); its
 //   full-rank weld solve agrees with the generic pseudo-inverse form of (18);
 // - the MuJoCo plant: the palms' measured contact wrenches and the person's force give the box's
-//   acceleration by Newton's second law.
+//   acceleration by Newton's second law; the smallest squeeze that holds a load is Coulomb's
+//   W / (2 mu) of MuJoCo's friction coefficient (a little more when the palms also carry a moment).
 #include "box_experiment.hpp"
+#include "box_scenario_loader.hpp"
+#include "minimum_squeeze.hpp"
 #include "mujoco_plant.hpp"
 #include "rigid_plant.hpp"
 
@@ -219,6 +222,29 @@ TEST(MujocoPlant, MeasuredPalmWrenchesGiveTheBoxsAcceleration)
     }
     EXPECT_LT(worst, 1e-6);
     std::printf("Newton's second law of the box from the measured contact forces: %.3g N\n", worst);
+}
+
+TEST(MujocoPlant, SmallestSqueezeThatHoldsIsCoulombsEstimate)
+{
+    // MuJoCo's elliptic cone with mu = 0.5 holds a load W between two palms from a squeeze of
+    // W / (2 mu) on. The bisection's bracket is 0.1 N wide; under the push (47 N of load along
+    // the palms) and the heaviest added mass (31 N) the palms carry almost no moment and the
+    // measured squeeze is within 2 % of Coulomb's; at 0.7 kg the moment of the box's sag (the
+    // palms' patch is 8 x 8 cm) costs about 0.8 N more, so the hold is allowed 15 %.
+    const Grasp grasp = hold_grasp(world());
+    const std::string scenarios = std::string(COOPDYN_BOX_DIR) + "/scenarios/";
+    for (const auto& [name, allowance] : {std::pair<const char*, double>{"push", 0.02}, {"add_mass", 0.02},
+                                          {"hold", 0.15}}) {
+        const BoxScenario scenario = load_box_scenario(scenarios + name + ".json");
+        const auto measured = measure_minimum_squeeze(world(), grasp, scenario);
+        ASSERT_TRUE(measured.has_value()) << name;
+        const double coulomb = static_load(scenario) / (2.0 * scenario.plant_friction.sliding);
+        EXPECT_NEAR(measured->coulomb, coulomb, 1e-12);
+        EXPECT_GE(measured->squeeze, coulomb) << name;  // less than Coulomb's cannot hold
+        EXPECT_LE(measured->squeeze, (1.0 + allowance) * coulomb) << name;
+        std::printf("%s: holds from %.2f N per palm, Coulomb W / (2 mu) = %.2f N (%d probes)\n", name,
+                    measured->squeeze, coulomb, measured->probes);
+    }
 }
 
 }  // namespace

@@ -36,13 +36,14 @@ const std::vector<std::string> experiments{"hold", "push", "add_mass", "circle"}
 /// own, several at a time.
 class DualArmBox : public ::testing::Test {
 protected:
-    void run(const std::string& selection, const std::string& plant)
+    /// `extra`: more options; the minimum-squeeze measurement is off unless a test asks for it.
+    void run(const std::string& selection, const std::string& plant, const std::string& extra = "--no-minimum-squeeze")
     {
         directory_ = example_tests::fresh_directory(
             output_root, ::testing::UnitTest::GetInstance()->current_test_info()->name());
         run_ = example_tests::run_program(program, directory_,
                                           "--experiment " + selection + " --plant " + plant +
-                                              " --no-plots --quiet --output out");
+                                              " --no-plots --quiet --output out " + extra);
         ASSERT_EQ(run_.exit_code, 0) << run_.output;
     }
     CsvTable log(const std::string& experiment, const std::string& plant) const
@@ -67,7 +68,8 @@ double column_min(const CsvTable& table, const std::string& column)
 
 TEST_F(DualArmBox, RunsEveryExperimentOnBothPlantsAndPrintsTheTable)
 {
-    ASSERT_NO_FATAL_FAILURE(run("all", "both"));
+    ASSERT_NO_FATAL_FAILURE(run("all", "both", ""));
+    EXPECT_TRUE(contains(run_.output, "holds N")) << run_.output;
     for (const std::string& experiment : experiments) {
         for (const char* plant : {"mujoco", "rigid"}) {
             EXPECT_TRUE(contains(run_.output, experiment)) << run_.output;
@@ -103,7 +105,8 @@ TEST_F(DualArmBox, RigidPlantTrueWrenchesStayInsideTheTrueFrictionCone)
 
 TEST_F(DualArmBox, ContactQpIsNeverInfeasibleInTheShippedScenarios)
 {
-    ASSERT_NO_FATAL_FAILURE(run("all", "both"));
+    ASSERT_NO_FATAL_FAILURE(run("all", "both", ""));
+    EXPECT_TRUE(contains(run_.output, "holds N")) << run_.output;
     for (const std::string& experiment : experiments) {
         for (const char* plant : {"mujoco", "rigid"}) {
             const CsvTable table = log(experiment, plant);
@@ -260,6 +263,8 @@ TEST(DualArmBoxInput, MalformedScenariosFailWithFileJsonPathAndProblem)
         {"misspelt.json", replaced("\"push\": {", "\"pushed\": {"), "misspelt.json: pushed: unknown field"},
         {"name.json", replaced("\"name\": \"push\"", "\"name\": \"../escaped\""), "name.json: name:"},
         {"type.json", replaced("\"box_mass\": 0.7", "\"box_mass\": \"heavy\""), "type.json: box_mass: expected a number"},
+        {"objective.json", replaced("\"moment_weight\": 10000.0", "\"torque_weight\": 0, \"squeeze_weight\": 0"),
+         "objective.json: controller.squeeze_weight: must be positive when torque_weight is 0"},
     };
     for (const Case& c : cases) {
         std::ofstream(directory / c.file) << c.text;
