@@ -151,12 +151,17 @@ inline double added_mass(const AddedMass& added, double t) noexcept
     return std::min(added.total, steps * added.step);
 }
 
+/// The box's mass with all the mass a scenario adds (kg).
+inline double heaviest_box_mass(const BoxScenario& scenario) noexcept
+{
+    return scenario.box_mass + (scenario.added_mass ? scenario.added_mass->total : 0.0);
+}
+
 /// The heaviest static load the palms carry in `scenario` (N): the weight of the box with all its
 /// added mass plus, if a person pushes, the push force held steady.
 inline double static_load(const BoxScenario& scenario) noexcept
 {
-    const double mass = scenario.box_mass + (scenario.added_mass ? scenario.added_mass->total : 0.0);
-    Eigen::Vector3d load = mass * Eigen::Vector3d(0.0, 0.0, -9.81);
+    Eigen::Vector3d load = heaviest_box_mass(scenario) * Eigen::Vector3d(0.0, 0.0, -9.81);
     if (scenario.push) {
         load += scenario.push->force * scenario.push->direction;
     }

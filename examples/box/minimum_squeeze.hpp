@@ -40,7 +40,7 @@ inline BoxScenario squeeze_probe(const BoxScenario& scenario, double squeeze)
     probe.name = scenario.name + "_minimum_squeeze";
     probe.experiment = Experiment::hold;
     probe.duration = 2.0;
-    probe.box_mass = scenario.box_mass + (scenario.added_mass ? scenario.added_mass->total : 0.0);
+    probe.box_mass = heaviest_box_mass(scenario);
     probe.plant_friction = scenario.plant_friction;
     probe.controller = scenario.controller;
     probe.controller.friction = probe_opening;
