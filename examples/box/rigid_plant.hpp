@@ -26,10 +26,13 @@
 
 #include "mujoco_arms.hpp"
 
+#include <coopdyn/dynamics/interaction_wrenches.hpp>
 #include <coopdyn/dynamics/udwadia_kalaba.hpp>
+#include <coopdyn/spatial/inertia.hpp>
 #include <coopdyn/spatial/quaternion.hpp>
 #include <coopdyn/spatial/skew.hpp>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 #include <Eigen/QR>
 
@@ -117,6 +120,7 @@ public:
         state_.box_angular_velocity =
             box_rotation * Eigen::Vector3d(initial.qvel[joints + 3], initial.qvel[joints + 4], initial.qvel[joints + 5]);
         evaluate_terms(state_, terms_);
+        require_separate_arms(terms_);
         for (std::size_t i = 0; i < palms; ++i) {
             weld_point_[i] = box_rotation.transpose() * (terms_.palm_position[i] - state_.box_position);
             weld_rotation_[i] = Eigen::Quaterniond(box_rotation.transpose() * terms_.palm_rotation[i]).normalized();
@@ -202,45 +206,68 @@ public:
         weld_error_ = current_weld_error();
     }
 
-    /// How solve() applies (18): `automatic` takes coopdyn::try_udwadia_kalaba_full_rank (the
-    /// constraint-space inertia, multipliers directly) and falls back to the generic
-    /// coopdyn::udwadia_kalaba when the weld loses rank (an arm at a singularity); `generic`
-    /// always takes the generic form (the tests compare the two).
-    enum class WeldSolver { automatic, generic };
+    /// How solve() applies (18):
+    /// - `structured` (the per-tick path): per arm, the palm's operational-space inertia
+    ///   Lambda_i = (J_i M_i^-1 J_i^T)^-1 and free acceleration turn the weld into the first
+    ///   paper's N + 1 bodies, solved by coopdyn::interaction_wrenches (the structured form of
+    ///   (18); docs/dual-arm-box.md, "The rigid plant"). Exact, because the arms share no joint:
+    ///   M and J are block diagonal (checked at construction).
+    /// - `constraint_space`: coopdyn::try_udwadia_kalaba_full_rank on the stacked 20-velocity
+    ///   system (the constraint-space inertia A M^-1 A^T, multipliers directly).
+    /// - `generic`: coopdyn::udwadia_kalaba, the pseudo-inverse form, with the multipliers from a
+    ///   QR of A^T.
+    /// The first two need full row rank; when an arm is singular they fall back to `generic`.
+    /// The tests compare all three.
+    enum class WeldSolver { structured, constraint_space, generic };
 
     /// The weld's accelerations and (with_wrenches) the palms' wrenches at `state` (terms
     /// evaluated there) under tau and the box wrench: the Udwadia-Kalaba solution of the stacked
     /// system.
     void solve(const PlantState& state, const ArmTerms& terms, const JointVector& tau, const Vector6d& box_wrench,
-               RigidGraspSolution& out, bool with_wrenches = true, WeldSolver solver = WeldSolver::automatic) const
+               RigidGraspSolution& out, bool with_wrenches = true, WeldSolver solver = WeldSolver::structured) const
     {
+        const WeldGeometry weld = weld_geometry(state, terms);
+        const bool solved = (solver == WeldSolver::structured && solve_structured(state, terms, weld, tau, box_wrench, out)) ||
+                            (solver == WeldSolver::constraint_space &&
+                             solve_stacked(state, terms, weld, tau, box_wrench, out, with_wrenches, /*generic=*/false));
+        if (!solved) {
+            solve_stacked(state, terms, weld, tau, box_wrench, out, with_wrenches, /*generic=*/true);
+        }
+    }
+
+private:
+    /// Per palm: the weld point r_i = R_o c_i ({w}) and the Baumgarte term beta_i, the weld's
+    /// acceleration J_i qdd + Jdot_i qdot = [a + alpha x r_i + w x (w x r_i); alpha] + beta_i,
+    /// beta_i = -2 omega_s (velocity error) - omega_s^2 (pose error).
+    struct WeldGeometry {
+        Eigen::Matrix<double, 3, palms> offset;
+        std::array<Vector6d, palms> stabilisation{};
+    };
+
+    /// WeldSolver::structured treats each arm alone: the arms must share no joint (M's coupling
+    /// block zero) and each palm must move with its own arm only (J's off-diagonal blocks zero).
+    static void require_separate_arms(const ArmTerms& terms)
+    {
+        const bool separate = terms.inertia.block<arm_joints, arm_joints>(0, arm_joints).isZero(0.0) &&
+                              terms.jacobian.block<6, arm_joints>(0, arm_joints).isZero(0.0) &&
+                              terms.jacobian.block<6, arm_joints>(6, 0).isZero(0.0);
+        if (!separate) {
+            throw std::runtime_error("rigid plant: the model's arms share joints (M or J not block diagonal); "
+                                     "palm 0 must be on joints 0-6 and palm 1 on joints 7-13");
+        }
+    }
+
+    WeldGeometry weld_geometry(const PlantState& state, const ArmTerms& terms) const
+    {
+        WeldGeometry weld;
         const Eigen::Matrix3d box_rotation = state.box_orientation.toRotationMatrix();
-        const Eigen::Matrix3d inertia_world = box_rotation * box_.inertia * box_rotation.transpose();
         const Eigen::Vector3d& w = state.box_angular_velocity;
-        const Eigen::Vector3d gravity(world_.get()->opt.gravity[0], world_.get()->opt.gravity[1],
-                                      world_.get()->opt.gravity[2]);
-
-        PlantMatrix inertia = PlantMatrix::Zero();
-        inertia.topLeftCorner<joints, joints>() = terms.inertia;
-        inertia.block<3, 3>(joints, joints) = box_.mass * Eigen::Matrix3d::Identity();
-        inertia.block<3, 3>(joints + 3, joints + 3) = inertia_world;
-        PlantVector unconstrained;
-        unconstrained << tau - terms.bias, box_.mass * gravity + box_wrench.head<3>(),
-            box_wrench.tail<3>() - w.cross(inertia_world * w);
-
-        WeldMatrix weld = WeldMatrix::Zero();
-        StackVector rate;
-        const Eigen::Quaterniond& box_orientation = state.box_orientation;
         for (std::size_t i = 0; i < palms; ++i) {
             const Eigen::Index row = static_cast<Eigen::Index>(6 * i);
             const Eigen::Vector3d r = box_rotation * weld_point_[i];
-            weld.block<6, joints>(row, 0) = terms.jacobian.middleRows<6>(row);
-            weld.block<3, 3>(row, joints) = -Eigen::Matrix3d::Identity();
-            weld.block<3, 3>(row, joints + 3) = coopdyn::skew(r);
-            weld.block<3, 3>(row + 3, joints + 3) = -Eigen::Matrix3d::Identity();
-            // Baumgarte: drive the weld's position and velocity errors to zero.
+            weld.offset.col(static_cast<Eigen::Index>(i)) = r;
             const Eigen::Vector3d position_error = terms.palm_position[i] - (state.box_position + r);
-            const Eigen::Quaterniond welded_orientation = box_orientation * weld_rotation_[i];
+            const Eigen::Quaterniond welded_orientation = state.box_orientation * weld_rotation_[i];
             const Eigen::Vector3d rotation_error = coopdyn::quaternion_log(
                 Eigen::Quaterniond(terms.palm_rotation[i]) * welded_orientation.conjugate());
             const Vector6d palm_twist = terms.jacobian.middleRows<6>(row) * state.qdot;
@@ -248,33 +275,126 @@ public:
             velocity_error << palm_twist.head<3>() - (state.box_velocity + w.cross(r)), palm_twist.tail<3>() - w;
             Vector6d pose_error;
             pose_error << position_error, rotation_error;
-            Vector6d weld_rate = -terms.jacobian_rate_qdot.segment<6>(row);
+            weld.stabilisation[i] = -damping_ * velocity_error - stiffness_ * pose_error;
+        }
+        return weld;
+    }
+
+    /// The box's unconstrained wrench about its centre, {w}: [m g + F_e; T_e - w x I_w w].
+    Vector6d box_free_wrench(const Eigen::Matrix3d& inertia_world, const Eigen::Vector3d& w, const Vector6d& box_wrench) const
+    {
+        const Eigen::Vector3d gravity(world_.get()->opt.gravity[0], world_.get()->opt.gravity[1],
+                                      world_.get()->opt.gravity[2]);
+        Vector6d wrench;
+        wrench << box_.mass * gravity + box_wrench.head<3>(), box_wrench.tail<3>() - w.cross(inertia_world * w);
+        return wrench;
+    }
+
+    /// WeldSolver::structured. Arm i alone, with a wrench f_i on its palm, has the palm
+    /// acceleration a_i + Lambda_i^-1 f_i, a_i = J_i M_i^-1 (tau_i - h_i) + Jdot_i qdot_i: the palm
+    /// is a body of inertia Lambda_i pushed by hSigma_i = Lambda_i a_i. The weld's beta_i is the
+    /// only term the first paper's weld lacks; it enters as hSigma_i - Lambda_i beta_i (the kernel
+    /// then returns xdd_i - beta_i, and the true h_i = Lambda_i xdd_i - hSigma_i). Returns false,
+    /// writing nothing, when an arm's M_i or J_i M_i^-1 J_i^T is not safely positive definite.
+    bool solve_structured(const PlantState& state, const ArmTerms& terms, const WeldGeometry& weld,
+                          const JointVector& tau, const Vector6d& box_wrench, RigidGraspSolution& out) const
+    {
+        using ArmMatrix = Eigen::Matrix<double, arm_joints, arm_joints>;
+        using ArmVector = Eigen::Matrix<double, arm_joints, 1>;
+        using Matrix6d = Eigen::Matrix<double, 6, 6>;
+        std::array<Eigen::LLT<ArmMatrix>, palms> arm_factor;
+        std::array<coopdyn::ArticulatedInertia<double>, palms> palm_inertia;
+        Eigen::Matrix<double, 6 * (palms + 1), 1> h_sigma, accelerations, wrenches;
+        const Eigen::Matrix3d box_rotation = state.box_orientation.toRotationMatrix();
+        const Eigen::Matrix3d inertia_world = box_rotation * box_.inertia * box_rotation.transpose();
+        const Eigen::Vector3d& w = state.box_angular_velocity;
+        for (std::size_t i = 0; i < palms; ++i) {
+            const Eigen::Index palm = static_cast<Eigen::Index>(i), row = 6 * palm, joint = arm_joints * palm;
+            arm_factor[i].compute(terms.inertia.block<arm_joints, arm_joints>(joint, joint));
+            if (arm_factor[i].info() != Eigen::Success) {
+                return false;
+            }
+            const auto jacobian = terms.jacobian.block<6, arm_joints>(row, joint);
+            Eigen::Matrix<double, arm_joints, 6> whitened = jacobian.transpose();  // L_i^-1 J_i^T
+            arm_factor[i].matrixL().solveInPlace(whitened);
+            const Matrix6d mobility = whitened.transpose() * whitened;  // Lambda_i^-1 = J_i M_i^-1 J_i^T
+            const Eigen::LLT<Matrix6d> mobility_factor(mobility);
+            if (mobility_factor.info() != Eigen::Success ||
+                mobility_factor.matrixLLT().diagonal().cwiseAbs2().minCoeff() <=
+                    Eigen::NumTraits<double>::dummy_precision() * mobility.diagonal().maxCoeff()) {
+                return false;  // the palm cannot move in every direction: the arm is singular
+            }
+            const Matrix6d inertia = mobility_factor.solve(Matrix6d::Identity());
+            palm_inertia[i] = coopdyn::ArticulatedInertia<double>(inertia);
+            const ArmVector free_joint_acceleration =
+                arm_factor[i].solve(tau.segment<arm_joints>(joint) - terms.bias.segment<arm_joints>(joint));
+            const Vector6d free_palm_acceleration = jacobian * free_joint_acceleration + terms.jacobian_rate_qdot.segment<6>(row);
+            h_sigma.segment<6>(6 + row) = inertia * (free_palm_acceleration - weld.stabilisation[i]);
+        }
+        h_sigma.head<6>() = box_free_wrench(inertia_world, w, box_wrench);
+        coopdyn::interaction_wrenches(coopdyn::CentralInertia<double>(box_.mass, inertia_world), palm_inertia,
+                                      weld.offset, w, h_sigma, accelerations, wrenches);
+        out.box_acceleration = accelerations.head<6>();
+        for (std::size_t i = 0; i < palms; ++i) {
+            const Eigen::Index palm = static_cast<Eigen::Index>(i), row = 6 * palm, joint = arm_joints * palm;
+            const Vector6d on_palm = wrenches.segment<6>(6 + row);  // h_i: the box's wrench on palm i
+            out.joint_acceleration.segment<arm_joints>(joint) =
+                arm_factor[i].solve(tau.segment<arm_joints>(joint) - terms.bias.segment<arm_joints>(joint) +
+                                    terms.jacobian.block<6, arm_joints>(row, joint).transpose() * on_palm);
+            out.contact_wrench[i] = -on_palm;
+        }
+        return true;
+    }
+
+    /// WeldSolver::constraint_space (returns false on rank loss) and WeldSolver::generic on the
+    /// stacked system A [qdd; a; alpha] = b of the file comment.
+    bool solve_stacked(const PlantState& state, const ArmTerms& terms, const WeldGeometry& weld, const JointVector& tau,
+                       const Vector6d& box_wrench, RigidGraspSolution& out, bool with_wrenches, bool generic) const
+    {
+        const Eigen::Matrix3d box_rotation = state.box_orientation.toRotationMatrix();
+        const Eigen::Matrix3d inertia_world = box_rotation * box_.inertia * box_rotation.transpose();
+        const Eigen::Vector3d& w = state.box_angular_velocity;
+        PlantMatrix inertia = PlantMatrix::Zero();
+        inertia.topLeftCorner<joints, joints>() = terms.inertia;
+        inertia.block<3, 3>(joints, joints) = box_.mass * Eigen::Matrix3d::Identity();
+        inertia.block<3, 3>(joints + 3, joints + 3) = inertia_world;
+        PlantVector unconstrained;
+        unconstrained << tau - terms.bias, box_free_wrench(inertia_world, w, box_wrench);
+
+        WeldMatrix constraint = WeldMatrix::Zero();
+        StackVector rate;
+        for (std::size_t i = 0; i < palms; ++i) {
+            const Eigen::Index row = static_cast<Eigen::Index>(6 * i);
+            const Eigen::Vector3d r = weld.offset.col(static_cast<Eigen::Index>(i));
+            constraint.block<6, joints>(row, 0) = terms.jacobian.middleRows<6>(row);
+            constraint.block<3, 3>(row, joints) = -Eigen::Matrix3d::Identity();
+            constraint.block<3, 3>(row, joints + 3) = coopdyn::skew(r);
+            constraint.block<3, 3>(row + 3, joints + 3) = -Eigen::Matrix3d::Identity();
+            Vector6d weld_rate = weld.stabilisation[i] - terms.jacobian_rate_qdot.segment<6>(row);
             weld_rate.head<3>() += w.cross(w.cross(r));
-            rate.segment<6>(row) = weld_rate - damping_ * velocity_error - stiffness_ * pose_error;
+            rate.segment<6>(row) = weld_rate;
         }
         PlantVector acceleration = PlantVector::Zero();
         StackVector lambda = StackVector::Zero();
-        // The weld has full row rank while neither arm is singular: the constraint-space form of
-        // (18) gives the multipliers directly. At a singularity, the generic pseudo-inverse form.
-        if (solver == WeldSolver::generic ||
-            !coopdyn::try_udwadia_kalaba_full_rank(inertia, weld, rate, unconstrained, lambda, acceleration)) {
-            const PlantVector constraint_force = coopdyn::udwadia_kalaba(inertia, weld, rate, unconstrained);
+        if (generic) {
+            const PlantVector constraint_force = coopdyn::udwadia_kalaba(inertia, constraint, rate, unconstrained);
             acceleration = inertia.llt().solve(unconstrained + constraint_force);
             // h = A^T lambda: the least-squares multipliers (unique while A has full row rank).
-            lambda = Eigen::ColPivHouseholderQR<Eigen::Matrix<double, plant_velocities, 6 * palms>>(weld.transpose())
+            lambda = Eigen::ColPivHouseholderQR<Eigen::Matrix<double, plant_velocities, 6 * palms>>(constraint.transpose())
                          .solve(constraint_force);
+        } else if (!coopdyn::try_udwadia_kalaba_full_rank(inertia, constraint, rate, unconstrained, lambda, acceleration)) {
+            return false;
         }
         out.joint_acceleration = acceleration.head<joints>();
         out.box_acceleration = acceleration.tail<6>();
-        if (!with_wrenches) {
-            return;
+        if (with_wrenches) {
+            for (std::size_t i = 0; i < palms; ++i) {
+                out.contact_wrench[i] = -lambda.segment<6>(static_cast<Eigen::Index>(6 * i));
+            }
         }
-        for (std::size_t i = 0; i < palms; ++i) {
-            out.contact_wrench[i] = -lambda.segment<6>(static_cast<Eigen::Index>(6 * i));
-        }
+        return true;
     }
 
-private:
     void evaluate_terms(const PlantState& state, ArmTerms& terms)
     {
         for (int j = 0; j < joints; ++j) {

@@ -167,34 +167,45 @@ TEST(RigidGraspPlant, PalmWrenchesSatisfyNewtonEulerOfBoxAndArms)
     std::printf("Newton-Euler residual: box %.3g, arms %.3g (relative)\n", worst_box, worst_arms);
 }
 
-TEST(RigidGraspPlant, FullRankAndGenericWeldSolversAgree)
+TEST(RigidGraspPlant, StructuredConstraintSpaceAndGenericWeldSolversAgree)
 {
-    // The plant's per-tick path (constraint-space form, multipliers directly) against the generic
-    // pseudo-inverse form of (18) with multipliers from a QR of A^T, along a driven motion.
+    // The plant's per-tick path (each palm as a body of its operational-space inertia, solved by
+    // the first paper's structured kernel) and the constraint-space form on the stacked system,
+    // both against the generic pseudo-inverse form of (18) with multipliers from a QR of A^T,
+    // along a driven motion with a heavier box than the controller assumes.
     const DataPointer start = world().make_data_at_hold();
     RigidGraspPlant plant(world(), *start, box_inertia(world(), 2.1));
     std::mt19937_64 rng(8);
-    double worst_acceleration = 0.0, worst_wrench = 0.0;
+    using Solver = RigidGraspPlant::WeldSolver;
+    std::array<double, 2> worst_acceleration{0.0, 0.0}, worst_wrench{0.0, 0.0};
     for (int tick = 0; tick < 100; ++tick) {
         const auto [tau, push] = random_drive(rng);
-        RigidGraspSolution fast, generic;
-        plant.solve(plant.state(), plant.arm_terms(), tau, push, fast, true, RigidGraspPlant::WeldSolver::automatic);
-        plant.solve(plant.state(), plant.arm_terms(), tau, push, generic, true, RigidGraspPlant::WeldSolver::generic);
-        Eigen::Matrix<double, plant_velocities, 1> fast_acceleration, generic_acceleration;
-        fast_acceleration << fast.joint_acceleration, fast.box_acceleration;
+        RigidGraspSolution generic;
+        plant.solve(plant.state(), plant.arm_terms(), tau, push, generic, true, Solver::generic);
+        Eigen::Matrix<double, plant_velocities, 1> generic_acceleration;
         generic_acceleration << generic.joint_acceleration, generic.box_acceleration;
-        worst_acceleration = std::max(worst_acceleration, (fast_acceleration - generic_acceleration).norm() /
-                                                              (1.0 + generic_acceleration.norm()));
-        for (std::size_t i = 0; i < palms; ++i) {
-            worst_wrench = std::max(worst_wrench, (fast.contact_wrench[i] - generic.contact_wrench[i]).norm() /
-                                                      (1.0 + generic.contact_wrench[i].norm()));
+        const std::array<Solver, 2> fast_solvers{Solver::structured, Solver::constraint_space};
+        for (std::size_t s = 0; s < fast_solvers.size(); ++s) {
+            RigidGraspSolution fast;
+            plant.solve(plant.state(), plant.arm_terms(), tau, push, fast, true, fast_solvers[s]);
+            Eigen::Matrix<double, plant_velocities, 1> fast_acceleration;
+            fast_acceleration << fast.joint_acceleration, fast.box_acceleration;
+            worst_acceleration[s] = std::max(worst_acceleration[s], (fast_acceleration - generic_acceleration).norm() /
+                                                                        (1.0 + generic_acceleration.norm()));
+            for (std::size_t i = 0; i < palms; ++i) {
+                worst_wrench[s] = std::max(worst_wrench[s], (fast.contact_wrench[i] - generic.contact_wrench[i]).norm() /
+                                                                (1.0 + generic.contact_wrench[i].norm()));
+            }
         }
         plant.end_tick(tau, push);
     }
-    EXPECT_LT(worst_acceleration, 1e-9);
-    EXPECT_LT(worst_wrench, 1e-9);
-    std::printf("full-rank vs generic weld solve: accelerations %.3g, wrenches %.3g (relative)\n", worst_acceleration,
-                worst_wrench);
+    for (std::size_t s = 0; s < 2; ++s) {
+        EXPECT_LT(worst_acceleration[s], 1e-9) << (s == 0 ? "structured" : "constraint space");
+        EXPECT_LT(worst_wrench[s], 1e-9) << (s == 0 ? "structured" : "constraint space");
+    }
+    std::printf("weld solves vs generic: structured accelerations %.3g, wrenches %.3g; constraint space %.3g, %.3g "
+                "(relative)\n",
+                worst_acceleration[0], worst_wrench[0], worst_acceleration[1], worst_wrench[1]);
 }
 
 TEST(MujocoPlant, MeasuredPalmWrenchesGiveTheBoxsAcceleration)
