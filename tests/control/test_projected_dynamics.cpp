@@ -257,3 +257,25 @@ template class coopdyn::ProjectedDynamics<double, 2, 14>;
 template class coopdyn::ProjectedDynamics<double, 3, 22>;
 template class coopdyn::ProjectedDynamics<float, 2, 15>;
 template class coopdyn::ProjectedDynamics<double, coopdyn::Dynamic, coopdyn::Dynamic>;
+
+namespace {
+
+TEST(ProjectedDynamicsKernels, RowSolveAgainstALowerTriangleIsXTimesLInverseTransposed)
+{
+    // detail::solve_rows_transposed_lower (the controller's J L^-T) against the explicit product
+    // X (L^-1)^T with L^-1 from Eigen's triangular solve of the identity, and Y L^T = X.
+    Rng rng(41);
+    for (const Index n : {1, 6, 14, 21}) {
+        for (const Index m : {1, 12, 18}) {
+            const MatrixXd L = coopdyn_test::random_spd(n, rng).llt().matrixL();
+            const MatrixXd X = coopdyn_test::random_matrix(m, n, rng);
+            MatrixXd Y = X;
+            coopdyn::detail::solve_rows_transposed_lower(L, Y);
+            const MatrixXd L_inverse = L.triangularView<Eigen::Lower>().solve(MatrixXd::Identity(n, n));
+            EXPECT_LT(relative(Y, X * L_inverse.transpose()), 1e-13) << "n = " << n << ", m = " << m;
+            EXPECT_LT(relative(Y * L.transpose(), X), 1e-14) << "n = " << n << ", m = " << m;
+        }
+    }
+}
+
+}  // namespace

@@ -119,7 +119,7 @@ struct ControllerData {
 
     // ---- workspace -----------------------------------------------------------------------------
     Eigen::LLT<JointMatrix> inertia_factor;                ///< M = L L^T
-    Eigen::Matrix<Scalar, Joints, Stack> whitened_jacobian;  ///< L^-1 J^T
+    Eigen::Matrix<Scalar, Stack, Joints> whitened_jacobian;  ///< J L^-T
     Eigen::Matrix<Scalar, Stack, Stack> contact_gram;      ///< J M^-1 J^T
     Eigen::LLT<Eigen::Matrix<Scalar, Stack, Stack>> contact_gram_factor;
     Eigen::Matrix<Scalar, Joints, Internal> jacobian_basis;  ///< J^T B
@@ -159,7 +159,7 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       contact_rotations(Eigen::Matrix<Scalar, 3, times_three(Arms)>::Zero(3, 3 * model.arms())),
       dynamics(model.arms(), model.joints()),
       inertia_factor(model.joints()),
-      whitened_jacobian(Eigen::Matrix<Scalar, Joints, Stack>::Zero(model.joints(), 6 * model.arms())),
+      whitened_jacobian(Eigen::Matrix<Scalar, Stack, Joints>::Zero(6 * model.arms(), model.joints())),
       contact_gram(Eigen::Matrix<Scalar, Stack, Stack>::Zero(6 * model.arms(), 6 * model.arms())),
       contact_gram_factor(6 * model.arms()),
       jacobian_basis(Eigen::Matrix<Scalar, Joints, Internal>::Zero(model.joints(), 6 * (model.arms() - 1))),
@@ -251,8 +251,10 @@ void controller_contact_qp(const Model& model, Data& data, const Input& input) n
     using Scalar = typename Model::Scalar;
     const auto& basis = data.dynamics.internal_basis;
     const SqueezeObjective<Scalar>& objective = model.objective();
-    data.jacobian_basis.noalias() = input.jacobian.transpose() * basis;
-    data.hessian.noalias() = objective.torque_weight * data.jacobian_basis.transpose() * data.jacobian_basis;
+    // Coefficient-based products: at these sizes Eigen's GEMM path costs more in packing than in
+    // arithmetic (as in ProjectedDynamics::compute).
+    data.jacobian_basis.noalias() = input.jacobian.transpose().lazyProduct(basis);
+    data.hessian.noalias() = objective.torque_weight * data.jacobian_basis.transpose().lazyProduct(data.jacobian_basis);
     data.hessian.diagonal().array() += objective.squeeze_weight;
     data.gradient.setZero();
     for (Index i = 0; i < model.arms(); ++i) {
@@ -367,9 +369,11 @@ bool controller_posture(const Model& model, Data& data, const Input& input) noex
     tau_n = input.bias;
     tau_n.array() -= model.posture_stiffness().array() * (input.positions - input.posture).array() +
                      model.posture_damping().array() * input.velocities.array();
-    data.whitened_jacobian = input.jacobian.transpose();
-    data.inertia_factor.matrixL().solveInPlace(data.whitened_jacobian);  // L^-1 J^T
-    data.contact_gram.noalias() = data.whitened_jacobian.transpose() * data.whitened_jacobian;
+    // J M^-1 J^T = W W^T, W = J L^-T, all rows of J solved at once, and coefficient-based: Eigen's
+    // blocked triangular solve and GEMM cost more than the arithmetic at these sizes.
+    data.whitened_jacobian = input.jacobian;
+    solve_rows_transposed_lower(data.inertia_factor.matrixLLT(), data.whitened_jacobian);
+    data.contact_gram.noalias() = data.whitened_jacobian.lazyProduct(data.whitened_jacobian.transpose());
     data.contact_gram_factor.compute(data.contact_gram);
     if (!regular_cholesky(data.contact_gram_factor)) {
         return false;

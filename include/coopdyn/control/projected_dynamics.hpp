@@ -159,6 +159,22 @@ void solve_columns(const Triangular& triangular, const Eigen::MatrixBase<Derived
     }
 }
 
+/// X <- X L^-T for a lower-triangular L (n x n, read from its lower triangle) and X (m x n):
+/// column i of the result is (x_i - sum_{k<i} L_ik y_k) / L_ii. The m right-hand sides are
+/// solved together, so every step is a contiguous m-vector axpy (column-major X); solve_columns
+/// on X^T would walk m serial substitution chains instead.
+template <typename DerivedL, typename DerivedX>
+void solve_rows_transposed_lower(const Eigen::MatrixBase<DerivedL>& L, const Eigen::MatrixBase<DerivedX>& X_out) noexcept
+{
+    auto& X = const_cast<Eigen::MatrixBase<DerivedX>&>(X_out);
+    for (Index i = 0; i < X.cols(); ++i) {
+        for (Index k = 0; k < i; ++k) {
+            X.col(i) -= L(i, k) * X.col(k);
+        }
+        X.col(i) /= L(i, i);
+    }
+}
+
 /// Householder QR of A (rows >= cols) in place: A becomes R (upper triangle; zeros below),
 /// reflector k is H_k = I - tau_k v_k v_k^T with v_k stored full-length in reflectors.col(k)
 /// (zeros above row k, 1 at row k), so that A_in = H_0 ... H_{cols-1} [R; 0]. The convention is
