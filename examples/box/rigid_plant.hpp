@@ -20,10 +20,13 @@
 // w_i = -lambda_i to the box (about its contact point, {w}). Integration drift of the weld is
 // corrected by Baumgarte stabilisation (critically damped at `stabilisation_frequency`).
 //
-// This header belongs to the examples (it depends on MuJoCo for the arms' M, h, J), not to the
-// library.
+// The arms' M, h, J, Jdot qdot come from their own recursion (lwr4_dynamics.hpp, from lwr4.hpp's
+// DH parameters), not from MuJoCo: the plant uses MuJoCo only at construction, for the initial
+// state and to check that the MJCF's arms are lwr4.hpp's. WeldSolver::structured then solves the
+// weld arm by arm. This header belongs to the examples, not to the library.
 #pragma once
 
+#include "lwr4_dynamics.hpp"
 #include "mujoco_arms.hpp"
 
 #include <coopdyn/dynamics/interaction_wrenches.hpp>
@@ -36,7 +39,9 @@
 #include <Eigen/Geometry>
 #include <Eigen/QR>
 
+#include <algorithm>
 #include <array>
+#include <string>
 #include <vector>
 
 namespace box_example {
@@ -97,17 +102,12 @@ public:
     RigidGraspPlant(const DualArmBoxModel& world, const mjData& initial, const BoxInertia& box,
                     double stabilisation_frequency = 50.0)
         : world_(world),
-          data_(mj_makeData(world.get())),
-          scratch_(static_cast<std::size_t>(6 * world.get()->nv + world.get()->nv * world.get()->nv)),
+          arms_{Lwr4Dynamics(Side::left, gravity_of(world)), Lwr4Dynamics(Side::right, gravity_of(world))},
           box_(box),
           period_(controller_period),
           stiffness_(stabilisation_frequency * stabilisation_frequency),
           damping_(2.0 * stabilisation_frequency)
     {
-        if (!data_) {
-            throw std::runtime_error("MuJoCo cannot allocate its mjData");
-        }
-        mj_copyData(data_.get(), world.get(), &initial);
         for (int j = 0; j < joints; ++j) {
             state_.q(j) = initial.qpos[j];
             state_.qdot(j) = initial.qvel[j];
@@ -120,7 +120,7 @@ public:
         state_.box_angular_velocity =
             box_rotation * Eigen::Vector3d(initial.qvel[joints + 3], initial.qvel[joints + 4], initial.qvel[joints + 5]);
         evaluate_terms(state_, terms_);
-        require_separate_arms(terms_);
+        require_arms_as_in_the_mjcf(world, initial, terms_);
         for (std::size_t i = 0; i < palms; ++i) {
             weld_point_[i] = box_rotation.transpose() * (terms_.palm_position[i] - state_.box_position);
             weld_rotation_[i] = Eigen::Quaterniond(box_rotation.transpose() * terms_.palm_rotation[i]).normalized();
@@ -244,16 +244,44 @@ private:
         std::array<Vector6d, palms> stabilisation{};
     };
 
-    /// WeldSolver::structured treats each arm alone: the arms must share no joint (M's coupling
-    /// block zero) and each palm must move with its own arm only (J's off-diagonal blocks zero).
-    static void require_separate_arms(const ArmTerms& terms)
+    static Eigen::Vector3d gravity_of(const DualArmBoxModel& world)
     {
-        const bool separate = terms.inertia.block<arm_joints, arm_joints>(0, arm_joints).isZero(0.0) &&
-                              terms.jacobian.block<6, arm_joints>(0, arm_joints).isZero(0.0) &&
-                              terms.jacobian.block<6, arm_joints>(6, 0).isZero(0.0);
-        if (!separate) {
-            throw std::runtime_error("rigid plant: the model's arms share joints (M or J not block diagonal); "
-                                     "palm 0 must be on joints 0-6 and palm 1 on joints 7-13");
+        const mjtNum* gravity = world.get()->opt.gravity;
+        return Eigen::Vector3d(gravity[0], gravity[1], gravity[2]);
+    }
+
+    /// The plant's arms are lwr4.hpp's (Lwr4Dynamics); the MJCF's must be the same, or the two
+    /// plants would simulate different robots. Compared once, at the initial state, with MuJoCo's
+    /// M, h, J, Jdot qdot and palm frames (all 14 joints: the arms must share none, which
+    /// WeldSolver::structured relies on).
+    static void require_arms_as_in_the_mjcf(const DualArmBoxModel& world, const mjData& initial, const ArmTerms& own)
+    {
+        const mjModel* model = world.get();
+        const DataPointer data(mj_makeData(model));
+        if (!data) {
+            throw std::runtime_error("MuJoCo cannot allocate its mjData");
+        }
+        mj_copyData(data.get(), model, &initial);
+        compute_arm_stages(model, data.get());
+        ArmTerms mujoco;
+        std::vector<mjtNum> scratch(static_cast<std::size_t>(6 * model->nv + model->nv * model->nv));
+        read_arm_terms(world, model, data.get(), mujoco, scratch.data());
+        const auto differs = [](const auto& value, const auto& expected) {
+            return !((value - expected).norm() <= 1e-9 * std::max(1.0, expected.norm()));
+        };
+        const char* problem = differs(own.inertia, mujoco.inertia)                         ? "M"
+                              : differs(own.bias, mujoco.bias)                             ? "h"
+                              : differs(own.jacobian, mujoco.jacobian)                     ? "J"
+                              : differs(own.jacobian_rate_qdot, mujoco.jacobian_rate_qdot) ? "Jdot qdot"
+                                                                                           : nullptr;
+        for (std::size_t i = 0; i < palms && problem == nullptr; ++i) {
+            if (differs(own.palm_position[i], mujoco.palm_position[i]) || differs(own.palm_rotation[i], mujoco.palm_rotation[i])) {
+                problem = "palm frame";
+            }
+        }
+        if (problem != nullptr) {
+            throw std::runtime_error(std::string("rigid plant: the MJCF's arms are not lwr4.hpp's (") + problem +
+                                     " differs from MuJoCo's at the initial state by more than 1e-9)");
         }
     }
 
@@ -315,16 +343,23 @@ private:
                 return false;
             }
             const auto jacobian = terms.jacobian.block<6, arm_joints>(row, joint);
+            // Column by column: fixed-size triangular solves of 7 and 6 unroll; Eigen's blocked
+            // matrix solve costs more than the arithmetic at these sizes.
             Eigen::Matrix<double, arm_joints, 6> whitened = jacobian.transpose();  // L_i^-1 J_i^T
-            arm_factor[i].matrixL().solveInPlace(whitened);
-            const Matrix6d mobility = whitened.transpose() * whitened;  // Lambda_i^-1 = J_i M_i^-1 J_i^T
+            for (Eigen::Index column = 0; column < 6; ++column) {
+                arm_factor[i].matrixL().solveInPlace(whitened.col(column));
+            }
+            const Matrix6d mobility = whitened.transpose().lazyProduct(whitened);  // Lambda_i^-1 = J_i M_i^-1 J_i^T
             const Eigen::LLT<Matrix6d> mobility_factor(mobility);
             if (mobility_factor.info() != Eigen::Success ||
                 mobility_factor.matrixLLT().diagonal().cwiseAbs2().minCoeff() <=
                     Eigen::NumTraits<double>::dummy_precision() * mobility.diagonal().maxCoeff()) {
                 return false;  // the palm cannot move in every direction: the arm is singular
             }
-            const Matrix6d inertia = mobility_factor.solve(Matrix6d::Identity());
+            Matrix6d inertia = Matrix6d::Identity();  // Lambda_i
+            for (Eigen::Index column = 0; column < 6; ++column) {
+                mobility_factor.solveInPlace(inertia.col(column));
+            }
             palm_inertia[i] = coopdyn::ArticulatedInertia<double>(inertia);
             const ArmVector free_joint_acceleration =
                 arm_factor[i].solve(tau.segment<arm_joints>(joint) - terms.bias.segment<arm_joints>(joint));
@@ -395,14 +430,23 @@ private:
         return true;
     }
 
-    void evaluate_terms(const PlantState& state, ArmTerms& terms)
+    /// Each arm's terms by its own recursion (lwr4_dynamics.hpp); the arms share no joint, so the
+    /// off-diagonal blocks stay zero.
+    void evaluate_terms(const PlantState& state, ArmTerms& terms) const noexcept
     {
-        for (int j = 0; j < joints; ++j) {
-            data_->qpos[j] = state.q(j);
-            data_->qvel[j] = state.qdot(j);
+        terms.inertia.setZero();
+        terms.jacobian.setZero();
+        Lwr4ArmTerms arm;
+        for (std::size_t i = 0; i < palms; ++i) {
+            const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(i), row = 6 * static_cast<Eigen::Index>(i);
+            arms_[i].evaluate(state.q.segment<arm_joints>(joint), state.qdot.segment<arm_joints>(joint), arm);
+            terms.inertia.block<arm_joints, arm_joints>(joint, joint) = arm.inertia;
+            terms.bias.segment<arm_joints>(joint) = arm.bias;
+            terms.jacobian.block<6, arm_joints>(row, joint) = arm.jacobian;
+            terms.jacobian_rate_qdot.segment<6>(row) = arm.jacobian_rate_qdot;
+            terms.palm_position[i] = arm.palm_position;
+            terms.palm_rotation[i] = arm.palm_rotation;
         }
-        compute_arm_stages(world_.get(), data_.get());
-        read_arm_terms(world_, world_.get(), data_.get(), terms, scratch_.data());
     }
 
     PlantState advanced(const PositionRate& velocity, const PlantVector& acceleration, double dt) const
@@ -433,8 +477,7 @@ private:
     }
 
     const DualArmBoxModel& world_;
-    DataPointer data_;
-    std::vector<mjtNum> scratch_;
+    std::array<Lwr4Dynamics, palms> arms_;
     BoxInertia box_;
     double period_;
     double time_ = 0.0;

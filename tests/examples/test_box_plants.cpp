@@ -2,15 +2,18 @@
 // derived from:
 // - Jdot qdot read from MuJoCo (mj_rnePostConstraint + mj_objectAcceleration) against central
 //   differences of J(q) qdot along q(t) = q + t qdot;
+// - the rigid plant's own arm dynamics (lwr4_dynamics.hpp, from lwr4.hpp's DH parameters)
+//   against MuJoCo's on the MJCF's arms;
 // - the rigid plant: each palm stays welded; the box obeys Newton-Euler under the reported palm
 //   wrenches, and each arm obeys M qdd + h = tau - J^T w under them; the total mechanical energy
 //   of arms and box is conserved when no torque acts (the weld's forces do no work); its
-//   full-rank weld solve agrees with the generic pseudo-inverse form of (18);
+//   structured and constraint-space weld solves agree with the generic pseudo-inverse form of (18);
 // - the MuJoCo plant: the palms' measured contact wrenches and the person's force give the box's
 //   acceleration by Newton's second law; the smallest squeeze that holds a load is Coulomb's
 //   W / (2 mu) of MuJoCo's friction coefficient (a little more when the palms also carry a moment).
 #include "box_experiment.hpp"
 #include "box_scenario_loader.hpp"
+#include "lwr4_dynamics.hpp"
 #include "minimum_squeeze.hpp"
 #include "mujoco_plant.hpp"
 #include "rigid_plant.hpp"
@@ -67,6 +70,45 @@ TEST(BoxArmTerms, JacobianRateTimesVelocityMatchesCentralDifferences)
     }
     EXPECT_LT(worst, 1e-7);
     RecordProperty("worst_relative_error", std::to_string(worst));
+}
+
+TEST(Lwr4Dynamics, MatchesMujocosArmsAtRandomStates)
+{
+    // The rigid plant's own recursive dynamics of each arm (lwr4_dynamics.hpp, from lwr4.hpp's DH
+    // parameters) against MuJoCo's M, h, J, Jdot qdot and palm frames of the MJCF's arms (CRBA,
+    // RNE, mj_jacSite, mj_objectAcceleration): two implementations and two model descriptions.
+    std::mt19937_64 rng(12);
+    std::uniform_real_distribution<double> angle(-2.5, 2.5), speed(-3.0, 3.0);
+    const std::array<Lwr4Dynamics, palms> arms{Lwr4Dynamics(Side::left), Lwr4Dynamics(Side::right)};
+    std::array<double, 6> worst{};  // M, h, J, Jdot qdot, palm position, palm rotation
+    for (int trial = 0; trial < 20; ++trial) {
+        JointVector q, qdot;
+        for (int j = 0; j < joints; ++j) {
+            q(j) = angle(rng);
+            qdot(j) = speed(rng);
+        }
+        const ArmTerms reference = terms_at(q, qdot);
+        for (std::size_t arm = 0; arm < palms; ++arm) {
+            const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(arm), row = 6 * static_cast<Eigen::Index>(arm);
+            Lwr4ArmTerms own;
+            arms[arm].evaluate(q.segment<arm_joints>(joint), qdot.segment<arm_joints>(joint), own);
+            const auto relative = [](const auto& value, const auto& expected) {
+                return (value - expected).norm() / std::max(1.0, expected.norm());
+            };
+            worst[0] = std::max(worst[0], relative(own.inertia, reference.inertia.block<arm_joints, arm_joints>(joint, joint)));
+            worst[1] = std::max(worst[1], relative(own.bias, reference.bias.segment<arm_joints>(joint)));
+            worst[2] = std::max(worst[2], relative(own.jacobian, reference.jacobian.block<6, arm_joints>(row, joint)));
+            worst[3] = std::max(worst[3], relative(own.jacobian_rate_qdot, reference.jacobian_rate_qdot.segment<6>(row)));
+            worst[4] = std::max(worst[4], relative(own.palm_position, reference.palm_position[arm]));
+            worst[5] = std::max(worst[5], relative(own.palm_rotation, reference.palm_rotation[arm]));
+        }
+    }
+    const std::array<const char*, 6> names{"M", "h", "J", "Jdot qdot", "palm position", "palm rotation"};
+    for (std::size_t k = 0; k < worst.size(); ++k) {
+        EXPECT_LT(worst[k], 1e-12) << names[k];
+        std::printf("%s: %.2g  ", names[k], worst[k]);
+    }
+    std::printf("(relative, own recursion vs MuJoCo)\n");
 }
 
 /// The mechanical energy of arms and box: kinetic (1/2 qdot^T M qdot + the box's) plus the
