@@ -52,6 +52,10 @@ public:
     explicit Lwr4Dynamics(Side side, const Eigen::Vector3d& gravity = Eigen::Vector3d(0.0, 0.0, -9.81))
         : links_(arm_links()), base_(base_transform(side)), gravity_(gravity), palm_point_(palm().contact_point)
     {
+        for (std::size_t i = 0; i < links_.size(); ++i) {
+            cos_alpha_[i] = std::cos(links_[i].alpha);
+            sin_alpha_[i] = std::sin(links_[i].alpha);
+        }
     }
 
     /// Fills `out` at (q, qdot). Allocates nothing.
@@ -74,7 +78,7 @@ public:
             const double c = std::cos(q(i)), s = std::sin(q(i));
             const Vector3d x = c * rotation.col(0) + s * rotation.col(1);
             const Vector3d y = -s * rotation.col(0) + c * rotation.col(1);
-            const double ca = std::cos(link.alpha), sa = std::sin(link.alpha);
+            const double ca = cos_alpha_[link_index(i)], sa = sin_alpha_[link_index(i)];
             const Vector3d next_origin = origin + link.d * axis.col(i) + link.a * x;
             rotation.col(0) = x;
             rotation.col(1) = ca * y + sa * axis.col(i);
@@ -150,6 +154,7 @@ private:
     }
 
     std::array<Lwr4Link, 7> links_;
+    std::array<double, 7> cos_alpha_{}, sin_alpha_{};  // of each link's DH twist
     Eigen::Isometry3d base_;
     Eigen::Vector3d gravity_;
     Eigen::Vector3d palm_point_;
