@@ -11,6 +11,9 @@
 // - the MuJoCo plant: the palms' measured contact wrenches and the person's force give the box's
 //   acceleration by Newton's second law; the smallest squeeze that holds a load is Coulomb's
 //   W / (2 mu) of MuJoCo's friction coefficient (a little more when the palms also carry a moment).
+// First: it defines EIGEN_RUNTIME_NO_MALLOC and eigen_assert before Eigen is included.
+#include "../allocation_counter.hpp"
+
 #include "box_experiment.hpp"
 #include "box_scenario_loader.hpp"
 #include "lwr4_dynamics.hpp"
@@ -248,6 +251,23 @@ TEST(RigidGraspPlant, StructuredConstraintSpaceAndGenericWeldSolversAgree)
     std::printf("weld solves vs generic: structured accelerations %.3g, wrenches %.3g; constraint space %.3g, %.3g "
                 "(relative)\n",
                 worst_acceleration[0], worst_wrench[0], worst_acceleration[1], worst_wrench[1]);
+}
+
+TEST(RigidGraspPlant, AStepAllocatesNothing)
+{
+    // The plant's per-tick path (four evaluations of the arms' own dynamics, four structured weld
+    // solves) on the heap: neither operator new nor Eigen's malloc.
+    const DataPointer start = world().make_data_at_hold();
+    RigidGraspPlant plant(world(), *start, box_inertia(world(), 0.7));
+    std::mt19937_64 rng(9);
+    const auto [tau, push] = random_drive(rng);
+    const auto counts = allocation_counter::count_allocations([&] {
+        for (int tick = 0; tick < 10; ++tick) {
+            plant.end_tick(tau, push);
+        }
+    });
+    EXPECT_EQ(counts.operator_new, 0);
+    EXPECT_EQ(counts.eigen, 0);
 }
 
 TEST(MujocoPlant, MeasuredPalmWrenchesGiveTheBoxsAcceleration)
