@@ -1,7 +1,9 @@
 // The dual-arm box example's loop (examples/box, docs/dual-arm-box.md): the controller tick as the
 // experiment calls it (inputs read from MuJoCo at the hold), one MuJoCo plant tick (mj_step1,
 // reading M, h, J, Jdot qdot, mj_step2, the contact wrenches), one rigid-plant RK4 step (four
-// Udwadia-Kalaba solves), and each shipped experiment on each plant (counters: real-time factor).
+// evaluations of the arms' own dynamics, four structured weld solves) and its parts against their
+// alternatives (the arms' terms from MuJoCo; the constraint-space and generic weld solves), and
+// each shipped experiment on each plant (counters: real-time factor).
 #include "box_experiment.hpp"
 #include "box_scenario_loader.hpp"
 #include "mujoco_plant.hpp"
@@ -9,8 +11,11 @@
 
 #include <benchmark/benchmark.h>
 
+#include <array>
+#include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -72,8 +77,8 @@ void BM_MujocoStep(benchmark::State& state)
 }
 BENCHMARK(BM_MujocoStep)->Unit(benchmark::kMicrosecond);
 
-/// One RK4 step of the rigid plant (four joint-space Udwadia-Kalaba solves, four evaluations of
-/// the arms' terms); restarted every 200 steps.
+/// One RK4 step of the rigid plant (four evaluations of the arms' own dynamics, four structured
+/// weld solves); restarted every 200 steps.
 void BM_RigidPlantStep(benchmark::State& state)
 {
     const DataPointer start = world().make_data_at_hold();
@@ -90,6 +95,70 @@ void BM_RigidPlantStep(benchmark::State& state)
     }
 }
 BENCHMARK(BM_RigidPlantStep)->Unit(benchmark::kMicrosecond);
+
+/// The arms' M, h, J, Jdot qdot and palm frames at a moving state: by the rigid plant's own
+/// recursion (lwr4_dynamics.hpp, both arms) and from MuJoCo (compute_arm_stages + read_arm_terms).
+JointVector moving_velocities()
+{
+    JointVector qdot;
+    for (int j = 0; j < joints; ++j) {
+        qdot(j) = 0.3 * std::sin(1.0 + j);
+    }
+    return qdot;
+}
+
+void BM_ArmTermsOwnRecursion(benchmark::State& state)
+{
+    const std::array<Lwr4Dynamics, palms> arms{Lwr4Dynamics(Side::left), Lwr4Dynamics(Side::right)};
+    const JointVector q = q_hold(), qdot = moving_velocities();
+    Lwr4ArmTerms terms;
+    for (auto _ : state) {
+        for (std::size_t i = 0; i < palms; ++i) {
+            const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(i);
+            arms[i].evaluate(q.segment<arm_joints>(joint), qdot.segment<arm_joints>(joint), terms);
+            benchmark::DoNotOptimize(terms.inertia.data());
+        }
+    }
+}
+BENCHMARK(BM_ArmTermsOwnRecursion);
+
+void BM_ArmTermsMujoco(benchmark::State& state)
+{
+    const mjModel* model = world().get();
+    const DataPointer data = world().make_data_at_hold();
+    const JointVector qdot = moving_velocities();
+    for (int j = 0; j < joints; ++j) {
+        data->qvel[j] = qdot(j);
+    }
+    std::vector<mjtNum> scratch(static_cast<std::size_t>(6 * model->nv + model->nv * model->nv));
+    ArmTerms terms;
+    for (auto _ : state) {
+        compute_arm_stages(model, data.get());
+        read_arm_terms(world(), model, data.get(), terms, scratch.data());
+        benchmark::DoNotOptimize(terms.inertia.data());
+    }
+}
+BENCHMARK(BM_ArmTermsMujoco);
+
+/// One weld solve of the rigid plant (accelerations and the palms' wrenches) at the hold, by each
+/// RigidGraspPlant::WeldSolver.
+void BM_WeldSolve(benchmark::State& state)
+{
+    const DataPointer start = world().make_data_at_hold();
+    const RigidGraspPlant plant(world(), *start, box_inertia(world(), 0.7));
+    const auto solver = static_cast<RigidGraspPlant::WeldSolver>(state.range(0));
+    const JointVector tau = plant.arm_terms().bias;
+    RigidGraspSolution solution;
+    for (auto _ : state) {
+        plant.solve(plant.state(), plant.arm_terms(), tau, Vector6d::Zero(), solution, true, solver);
+        benchmark::DoNotOptimize(solution.joint_acceleration.data());
+    }
+}
+BENCHMARK(BM_WeldSolve)
+    ->ArgName("solver")
+    ->Arg(static_cast<int>(RigidGraspPlant::WeldSolver::structured))
+    ->Arg(static_cast<int>(RigidGraspPlant::WeldSolver::constraint_space))
+    ->Arg(static_cast<int>(RigidGraspPlant::WeldSolver::generic));
 
 /// A whole shipped experiment (examples/box/scenarios/NAME.json, its full duration and the 0.2 s
 /// settling) per iteration; counters: simulated seconds per wall second, and microseconds per

@@ -330,8 +330,10 @@ private:
         using ArmMatrix = Eigen::Matrix<double, arm_joints, arm_joints>;
         using ArmVector = Eigen::Matrix<double, arm_joints, 1>;
         using Matrix6d = Eigen::Matrix<double, 6, 6>;
-        std::array<Eigen::LLT<ArmMatrix>, palms> arm_factor;
-        std::array<coopdyn::ArticulatedInertia<double>, palms> palm_inertia;
+        std::array<Eigen::LLT<ArmMatrix>, palms> arm_factor;                      // M_i = L_i L_i^T
+        std::array<Eigen::Matrix<double, arm_joints, 6>, palms> whitened;         // L_i^-1 J_i^T
+        std::array<ArmVector, palms> free_joint_acceleration;                     // M_i^-1 (tau_i - h_i)
+        std::array<coopdyn::ArticulatedInertia<double>, palms> palm_inertia;      // Lambda_i
         Eigen::Matrix<double, 6 * (palms + 1), 1> h_sigma, accelerations, wrenches;
         const Eigen::Matrix3d box_rotation = state.box_orientation.toRotationMatrix();
         const Eigen::Matrix3d inertia_world = box_rotation * box_.inertia * box_rotation.transpose();
@@ -345,25 +347,26 @@ private:
             const auto jacobian = terms.jacobian.block<6, arm_joints>(row, joint);
             // Column by column: fixed-size triangular solves of 7 and 6 unroll; Eigen's blocked
             // matrix solve costs more than the arithmetic at these sizes.
-            Eigen::Matrix<double, arm_joints, 6> whitened = jacobian.transpose();  // L_i^-1 J_i^T
+            whitened[i] = jacobian.transpose();
             for (Eigen::Index column = 0; column < 6; ++column) {
-                arm_factor[i].matrixL().solveInPlace(whitened.col(column));
+                arm_factor[i].matrixL().solveInPlace(whitened[i].col(column));
             }
-            const Matrix6d mobility = whitened.transpose().lazyProduct(whitened);  // Lambda_i^-1 = J_i M_i^-1 J_i^T
+            const Matrix6d mobility = whitened[i].transpose().lazyProduct(whitened[i]);  // Lambda_i^-1 = J_i M_i^-1 J_i^T
             const Eigen::LLT<Matrix6d> mobility_factor(mobility);
             if (mobility_factor.info() != Eigen::Success ||
                 mobility_factor.matrixLLT().diagonal().cwiseAbs2().minCoeff() <=
                     Eigen::NumTraits<double>::dummy_precision() * mobility.diagonal().maxCoeff()) {
                 return false;  // the palm cannot move in every direction: the arm is singular
             }
-            Matrix6d inertia = Matrix6d::Identity();  // Lambda_i
+            // Lambda_i = F^-T F^-1 (Lambda_i^-1 = F F^T): one triangular solve per column, not two.
+            Matrix6d factor_inverse = Matrix6d::Identity();
             for (Eigen::Index column = 0; column < 6; ++column) {
-                mobility_factor.solveInPlace(inertia.col(column));
+                mobility_factor.matrixL().solveInPlace(factor_inverse.col(column));
             }
+            const Matrix6d inertia = factor_inverse.transpose().lazyProduct(factor_inverse);
             palm_inertia[i] = coopdyn::ArticulatedInertia<double>(inertia);
-            const ArmVector free_joint_acceleration =
-                arm_factor[i].solve(tau.segment<arm_joints>(joint) - terms.bias.segment<arm_joints>(joint));
-            const Vector6d free_palm_acceleration = jacobian * free_joint_acceleration + terms.jacobian_rate_qdot.segment<6>(row);
+            free_joint_acceleration[i] = arm_factor[i].solve(tau.segment<arm_joints>(joint) - terms.bias.segment<arm_joints>(joint));
+            const Vector6d free_palm_acceleration = jacobian * free_joint_acceleration[i] + terms.jacobian_rate_qdot.segment<6>(row);
             h_sigma.segment<6>(6 + row) = inertia * (free_palm_acceleration - weld.stabilisation[i]);
         }
         h_sigma.head<6>() = box_free_wrench(inertia_world, w, box_wrench);
@@ -373,9 +376,10 @@ private:
         for (std::size_t i = 0; i < palms; ++i) {
             const Eigen::Index palm = static_cast<Eigen::Index>(i), row = 6 * palm, joint = arm_joints * palm;
             const Vector6d on_palm = wrenches.segment<6>(6 + row);  // h_i: the box's wrench on palm i
-            out.joint_acceleration.segment<arm_joints>(joint) =
-                arm_factor[i].solve(tau.segment<arm_joints>(joint) - terms.bias.segment<arm_joints>(joint) +
-                                    terms.jacobian.block<6, arm_joints>(row, joint).transpose() * on_palm);
+            // qdd_i = M_i^-1 (tau_i - h_i + J_i^T h_i) = free + L_i^-T (L_i^-1 J_i^T) h_i
+            ArmVector response = whitened[i] * on_palm;
+            arm_factor[i].matrixU().solveInPlace(response);
+            out.joint_acceleration.segment<arm_joints>(joint) = free_joint_acceleration[i] + response;
             out.contact_wrench[i] = -on_palm;
         }
         return true;
