@@ -52,17 +52,24 @@ ArmTerms terms_at(const JointVector& q, const JointVector& qdot)
     return terms;
 }
 
+/// Joint angles uniform in (-max_angle, max_angle) rad and speeds in (-max_speed, max_speed) rad/s.
+std::pair<JointVector, JointVector> random_joint_state(std::mt19937_64& rng, double max_angle, double max_speed)
+{
+    std::uniform_real_distribution<double> angle(-max_angle, max_angle), speed(-max_speed, max_speed);
+    JointVector q, qdot;
+    for (int j = 0; j < joints; ++j) {
+        q(j) = angle(rng);
+        qdot(j) = speed(rng);
+    }
+    return {q, qdot};
+}
+
 TEST(BoxArmTerms, JacobianRateTimesVelocityMatchesCentralDifferences)
 {
     std::mt19937_64 rng(11);
-    std::uniform_real_distribution<double> angle(-1.5, 1.5), speed(-2.0, 2.0);
     double worst = 0.0;
     for (int trial = 0; trial < 10; ++trial) {
-        JointVector q, qdot;
-        for (int j = 0; j < joints; ++j) {
-            q(j) = angle(rng);
-            qdot(j) = speed(rng);
-        }
+        const auto [q, qdot] = random_joint_state(rng, 1.5, 2.0);
         const ArmTerms terms = terms_at(q, qdot);
         const double step = 1e-6;
         const StackVector ahead = terms_at(q + step * qdot, qdot).jacobian * qdot;
@@ -81,15 +88,10 @@ TEST(Lwr4Dynamics, MatchesMujocosArmsAtRandomStates)
     // parameters) against MuJoCo's M, h, J, Jdot qdot and palm frames of the MJCF's arms (CRBA,
     // RNE, mj_jacSite, mj_objectAcceleration): two implementations and two model descriptions.
     std::mt19937_64 rng(12);
-    std::uniform_real_distribution<double> angle(-2.5, 2.5), speed(-3.0, 3.0);
     const std::array<Lwr4Dynamics, palms> arms{Lwr4Dynamics(Side::left), Lwr4Dynamics(Side::right)};
     std::array<double, 6> worst{};  // M, h, J, Jdot qdot, palm position, palm rotation
     for (int trial = 0; trial < 20; ++trial) {
-        JointVector q, qdot;
-        for (int j = 0; j < joints; ++j) {
-            q(j) = angle(rng);
-            qdot(j) = speed(rng);
-        }
+        const auto [q, qdot] = random_joint_state(rng, 2.5, 3.0);
         const ArmTerms reference = terms_at(q, qdot);
         for (std::size_t arm = 0; arm < palms; ++arm) {
             const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(arm), row = 6 * static_cast<Eigen::Index>(arm);
