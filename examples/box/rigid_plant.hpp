@@ -1,8 +1,8 @@
 // The exact rigid-grasp plant of the dual-arm box (docs/dual-arm-box.md, "The rigid plant"): the
 // two arms plus the box with its TRUE mass and inertia, each palm welded to the box. The
 // accelerations and the true contact wrenches come from coopdyn's Udwadia-Kalaba solution (paper
-// (18)-(19), coopdyn::udwadia_kalaba) applied in joint space, integrated with RK4 at the
-// controller's rate.
+// (18)-(19)) applied in joint space (by default in the first paper's structured form,
+// coopdyn::interaction_wrenches; see WeldSolver), integrated with RK4 at the controller's rate.
 //
 // Coordinates: the arms' q (14), the box's centre p and orientation q_o; velocities qdot, the
 // centre's velocity v and the angular velocity w, both in {w}. Unconstrained dynamics
