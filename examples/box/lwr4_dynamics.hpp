@@ -1,6 +1,6 @@
 // The dynamics of one arm of the dual-arm box example, straight from lwr4.hpp's Denavit-Hartenberg
 // parameters and link inertias, without MuJoCo: what the rigid plant evaluates four times per
-// RK4 step (docs/dual-arm-box.md, "The rigid plant"). Depends on Eigen only.
+// RK4 step (docs/dual-arm-box.md, "The rigid plant"). Depends on Eigen and coopdyn's spatial types.
 //
 // At one state (q, qdot) of one arm it gives, in the world frame:
 //   M(q) (7 x 7), h(q, qdot) = C qdot + g (7), the palm contact point's Jacobian J (6 x 7, rows
@@ -18,13 +18,17 @@
 // acceleration from it is Jdot qdot. Uniform gravity is a base acceleration -g added to every
 // linear acceleration, so the inward pass, with F_i = m_i (a(c_i) - g) and
 // N_i = I_i alpha_i + w_i x I_i w_i, gives h_i = u_i . n_i (n_i: the moment about p_i of
-// everything beyond joint i). M comes from the composite inertias (CRBA) in spatial form about
-// the world origin, twist S_i = [u_i; p_i x u_i]: M_ij = S_i^T I^C_max(i,j) S_j.
+// everything beyond joint i). M comes from the composite inertias (CRBA) about the world origin,
+// in coopdyn's spatial algebra (SpatialInertia, Motion, Force), twist S_i = [p_i x u_i; u_i]:
+// M_ij = S_i^T I^C_max(i,j) S_j.
 //
 // This header belongs to the examples, not to the library.
 #pragma once
 
 #include "lwr4.hpp"
+
+#include <coopdyn/spatial/inertia.hpp>
+#include <coopdyn/spatial/spatial_vector.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -120,17 +124,19 @@ public:
             out.bias(i) = axis.col(i).dot(moment);
         }
 
-        // CRBA about the world origin: I^C_i = sum_{k >= i} I_k, M_ij = S_i^T I^C_j S_j (i <= j).
-        Eigen::Matrix<double, 6, n> twists;
+        // CRBA about the world origin (coopdyn's spatial algebra, [linear; angular]):
+        // I^C_j = sum_{k >= j} I_k, M_ij = S_i . (I^C_j S_j) for i <= j.
+        std::array<coopdyn::Motion<double>, n> twists;
         for (int i = 0; i < n; ++i) {
-            twists.col(i) << axis.col(i), pivot.col(i).cross(axis.col(i));
+            twists[link_index(i)] = coopdyn::Motion<double>::make(pivot.col(i).cross(axis.col(i)), axis.col(i));
         }
-        Eigen::Matrix<double, 6, 6> composite = Eigen::Matrix<double, 6, 6>::Zero();
+        coopdyn::SpatialInertia<double> composite = coopdyn::SpatialInertia<double>::Zero();
         for (int j = n - 1; j >= 0; --j) {
-            add_body_inertia(links_[link_index(j)].mass, com.col(j), inertia_world[link_index(j)], composite);
-            const Eigen::Matrix<double, 6, 1> momentum = composite * twists.col(j);
+            composite += coopdyn::SpatialInertia<double>::from_centre(
+                links_[link_index(j)].mass, com.col(j), coopdyn::Symmetric3<double>(inertia_world[link_index(j)]));
+            const coopdyn::Force<double> momentum = composite * twists[link_index(j)];
             for (int i = 0; i <= j; ++i) {
-                const double entry = twists.col(i).dot(momentum);
+                const double entry = twists[link_index(i)].dot(momentum);
                 out.inertia(i, j) = entry;
                 out.inertia(j, i) = entry;
             }
@@ -139,19 +145,6 @@ public:
 
 private:
     static std::size_t link_index(int i) noexcept { return static_cast<std::size_t>(i); }
-
-    /// Adds a body's spatial inertia about the world origin, in [w; v] order:
-    /// [[I_c + m S(c) S(c)^T, m S(c)], [m S(c)^T, m I]] (momentum [L_0; p] of the twist [w; v_0]).
-    static void add_body_inertia(double mass, const Eigen::Vector3d& c, const Eigen::Matrix3d& inertia_about_com,
-                                 Eigen::Matrix<double, 6, 6>& composite) noexcept
-    {
-        Eigen::Matrix3d s;
-        s << 0.0, -c.z(), c.y(), c.z(), 0.0, -c.x(), -c.y(), c.x(), 0.0;
-        composite.topLeftCorner<3, 3>() += inertia_about_com - mass * s * s;
-        composite.topRightCorner<3, 3>() += mass * s;
-        composite.bottomLeftCorner<3, 3>() -= mass * s;
-        composite.bottomRightCorner<3, 3>().diagonal().array() += mass;
-    }
 
     std::array<Lwr4Link, 7> links_;
     std::array<double, 7> cos_alpha_{}, sin_alpha_{};  // of each link's DH twist

@@ -236,12 +236,14 @@ public:
     }
 
 private:
-    /// Per palm: the weld point r_i = R_o c_i ({w}) and the Baumgarte term beta_i, the weld's
-    /// acceleration J_i qdd + Jdot_i qdot = [a + alpha x r_i + w x (w x r_i); alpha] + beta_i,
-    /// beta_i = -2 omega_s (velocity error) - omega_s^2 (pose error).
+    /// What every weld solver needs at one state, computed once: per palm, the weld point
+    /// r_i = R_o c_i ({w}) and the Baumgarte term beta_i of the weld's acceleration
+    /// J_i qdd + Jdot_i qdot = [a + alpha x r_i + w x (w x r_i); alpha] + beta_i,
+    /// beta_i = -2 omega_s (velocity error) - omega_s^2 (pose error); and the box's inertia in {w}.
     struct WeldGeometry {
         Eigen::Matrix<double, 3, palms> offset;
         std::array<Vector6d, palms> stabilisation{};
+        Eigen::Matrix3d box_inertia_world;  ///< R_o I R_o^T, about the centre
     };
 
     static Eigen::Vector3d gravity_of(const DualArmBoxModel& world)
@@ -289,6 +291,7 @@ private:
     {
         WeldGeometry weld;
         const Eigen::Matrix3d box_rotation = state.box_orientation.toRotationMatrix();
+        weld.box_inertia_world = box_rotation * box_.inertia * box_rotation.transpose();
         const Eigen::Vector3d& w = state.box_angular_velocity;
         for (std::size_t i = 0; i < palms; ++i) {
             const Eigen::Index row = static_cast<Eigen::Index>(6 * i);
@@ -335,8 +338,7 @@ private:
         std::array<ArmVector, palms> free_joint_acceleration;                     // M_i^-1 (tau_i - h_i)
         std::array<coopdyn::ArticulatedInertia<double>, palms> palm_inertia;      // Lambda_i
         Eigen::Matrix<double, 6 * (palms + 1), 1> h_sigma, accelerations, wrenches;
-        const Eigen::Matrix3d box_rotation = state.box_orientation.toRotationMatrix();
-        const Eigen::Matrix3d inertia_world = box_rotation * box_.inertia * box_rotation.transpose();
+        const Eigen::Matrix3d& inertia_world = weld.box_inertia_world;
         const Eigen::Vector3d& w = state.box_angular_velocity;
         for (std::size_t i = 0; i < palms; ++i) {
             const Eigen::Index palm = static_cast<Eigen::Index>(i), row = 6 * palm, joint = arm_joints * palm;
@@ -390,8 +392,7 @@ private:
     bool solve_stacked(const PlantState& state, const ArmTerms& terms, const WeldGeometry& weld, const JointVector& tau,
                        const Vector6d& box_wrench, RigidGraspSolution& out, bool with_wrenches, bool generic) const
     {
-        const Eigen::Matrix3d box_rotation = state.box_orientation.toRotationMatrix();
-        const Eigen::Matrix3d inertia_world = box_rotation * box_.inertia * box_rotation.transpose();
+        const Eigen::Matrix3d& inertia_world = weld.box_inertia_world;
         const Eigen::Vector3d& w = state.box_angular_velocity;
         PlantMatrix inertia = PlantMatrix::Zero();
         inertia.topLeftCorner<joints, joints>() = terms.inertia;
@@ -435,11 +436,13 @@ private:
     }
 
     /// Each arm's terms by its own recursion (lwr4_dynamics.hpp); the arms share no joint, so the
-    /// off-diagonal blocks stay zero.
+    /// off-diagonal blocks are zero.
     void evaluate_terms(const PlantState& state, ArmTerms& terms) const noexcept
     {
-        terms.inertia.setZero();
-        terms.jacobian.setZero();
+        terms.inertia.block<arm_joints, arm_joints>(0, arm_joints).setZero();
+        terms.inertia.block<arm_joints, arm_joints>(arm_joints, 0).setZero();
+        terms.jacobian.block<6, arm_joints>(0, arm_joints).setZero();
+        terms.jacobian.block<6, arm_joints>(6, 0).setZero();
         Lwr4ArmTerms arm;
         for (std::size_t i = 0; i < palms; ++i) {
             const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(i), row = 6 * static_cast<Eigen::Index>(i);

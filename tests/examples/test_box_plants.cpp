@@ -24,7 +24,10 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <fstream>
 #include <random>
+#include <sstream>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -114,6 +117,30 @@ TEST(Lwr4Dynamics, MatchesMujocosArmsAtRandomStates)
         std::printf("%s: %.2g  ", names[k], worst[k]);
     }
     std::printf("(relative, own recursion vs MuJoCo)\n");
+}
+
+TEST(RigidGraspPlant, RefusesAnMjcfWhoseArmsAreNotLwr4s)
+{
+    // The rigid plant computes the arms from lwr4.hpp; an MJCF with other arms (here: the left
+    // link 6 heavier) would make the two plants simulate different robots.
+    std::ifstream shipped(COOPDYN_BOX_MJCF);
+    std::stringstream text;
+    text << shipped.rdbuf();
+    std::string xml = text.str();
+    const std::size_t link6_mass = xml.find("mass=\"1.1\"");
+    ASSERT_NE(link6_mass, std::string::npos);
+    xml.replace(link6_mass, 11, "mass=\"1.3\"");
+    const std::string path = testing::TempDir() + "dual_arm_box_heavier_link6.xml";
+    std::ofstream(path) << xml;
+    const DualArmBoxModel other(path);
+    const DataPointer start = other.make_data_at_hold();
+    try {
+        RigidGraspPlant plant(other, *start, box_inertia(other, 0.7));
+        FAIL() << "the plant accepted arms that are not lwr4.hpp's";
+    } catch (const std::runtime_error& error) {
+        EXPECT_NE(std::string(error.what()).find("the MJCF's arms are not lwr4.hpp's (M differs"), std::string::npos)
+            << error.what();
+    }
 }
 
 /// The mechanical energy of arms and box: kinetic (1/2 qdot^T M qdot + the box's) plus the
