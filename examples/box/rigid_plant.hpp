@@ -54,6 +54,9 @@ using WeldMatrix = Eigen::Matrix<double, 6 * palms, plant_velocities>;
 /// Rate of the positions: qdot (14), the centre's velocity (3), the quaternion's rate (4, Eigen's
 /// coeffs order x, y, z, w).
 using PositionRate = Eigen::Matrix<double, joints + 7, 1>;
+/// Both arms' terms arm by arm, as Lwr4Dynamics gives them: what the RK4 stages evaluate and the
+/// weld solves read. ArmTerms is their block-diagonal 14-joint form.
+using ArmPairTerms = std::array<Lwr4ArmTerms, palms>;
 
 /// The arms and the box at one instant.
 struct PlantState {
@@ -95,6 +98,91 @@ inline BoxInertia box_inertia(const DualArmBoxModel& world, double mass)
     return box;
 }
 
+// Complete unrolling of the small fixed-trip-count loops below (their inner bounds depend on the
+// outer index, which compilers do not always unroll on their own).
+#if defined(__clang__)
+#define BOX_EXAMPLE_UNROLL _Pragma("unroll")
+#elif defined(__GNUC__)
+#define BOX_EXAMPLE_UNROLL _Pragma("GCC unroll 8")
+#else
+#define BOX_EXAMPLE_UNROLL
+#endif
+
+/// A = L D L^T of a small symmetric positive definite matrix (L unit lower triangular, D the
+/// pivots), written out for the compiler to unroll: Eigen's LLT runs a generic algorithm with
+/// run-time loops, which costs more than the arithmetic at 6x6 and 7x7. L D L^T rather than
+/// L L^T for the reason coopdyn::detail::FixedCholesky gives (no square root on the serial chain
+/// of pivots); unlike FixedCholesky it exposes the pivots (the weld solve's rank test) and solves
+/// many right-hand sides at once. Only the lower triangle of the input is read.
+template <int Size> class SmallLdlt {
+public:
+    /// Right-hand sides side by side, row-major: each step of the substitutions then updates a
+    /// whole row, which vectorises across the right-hand sides.
+    template <int Columns> using RowMajorBlock = Eigen::Matrix<double, Size, Columns, Eigen::RowMajor>;
+
+    /// Factorises; false when a pivot is not positive (not positive definite, or NaN).
+    template <typename Derived> bool compute(const Eigen::MatrixBase<Derived>& matrix) noexcept
+    {
+        // d_j = a_jj - sum_k l_jk^2 d_k, l_ij = (a_ij - sum_k l_ik l_jk d_k) / d_j (Golub and Van
+        // Loan, Matrix Computations, 4.1.2), with scaled_(i, k) = l_ik d_k kept alongside.
+        bool positive_definite = true;
+        BOX_EXAMPLE_UNROLL
+        for (int column = 0; column < Size; ++column) {
+            double pivot = matrix(column, column);
+            BOX_EXAMPLE_UNROLL
+            for (int k = 0; k < column; ++k) {
+                pivot -= lower_(column, k) * scaled_(column, k);
+            }
+            positive_definite = positive_definite && pivot > 0.0;
+            pivot_(column) = pivot;
+            const double inverse_pivot = 1.0 / pivot;
+            inverse_pivot_(column) = inverse_pivot;
+            BOX_EXAMPLE_UNROLL
+            for (int row = column + 1; row < Size; ++row) {
+                double value = matrix(row, column);
+                BOX_EXAMPLE_UNROLL
+                for (int k = 0; k < column; ++k) {
+                    value -= lower_(row, k) * scaled_(column, k);
+                }
+                scaled_(row, column) = value;
+                lower_(row, column) = value * inverse_pivot;
+            }
+        }
+        return positive_definite;
+    }
+
+    /// The pivots d_j (the squares of L L^T's diagonal).
+    const Eigen::Matrix<double, Size, 1>& pivots() const noexcept { return pivot_; }
+
+    /// B := A^-1 B: L Y = B, then L^T X = D^-1 Y, row by row.
+    template <int Columns> void solve_in_place(RowMajorBlock<Columns>& block) const noexcept
+    {
+        BOX_EXAMPLE_UNROLL
+        for (int row = 1; row < Size; ++row) {
+            BOX_EXAMPLE_UNROLL
+            for (int k = 0; k < row; ++k) {
+                block.row(row) -= lower_(row, k) * block.row(k);
+            }
+        }
+        BOX_EXAMPLE_UNROLL
+        for (int row = Size - 1; row >= 0; --row) {
+            block.row(row) *= inverse_pivot_(row);
+            BOX_EXAMPLE_UNROLL
+            for (int k = row + 1; k < Size; ++k) {
+                block.row(row) -= lower_(k, row) * block.row(k);
+            }
+        }
+    }
+
+private:
+    // Only the strictly lower parts are written and read; uninitialised on purpose.
+    Eigen::Matrix<double, Size, Size> lower_;   // l_ij, i > j
+    Eigen::Matrix<double, Size, Size> scaled_;  // l_ij d_j, i > j
+    Eigen::Matrix<double, Size, 1> pivot_, inverse_pivot_;
+};
+
+#undef BOX_EXAMPLE_UNROLL
+
 class RigidGraspPlant {
 public:
     /// Starts from `initial` (arms and box as in the MuJoCo data, e.g. the keyframe "hold") and
@@ -119,11 +207,16 @@ public:
         state_.box_velocity = Eigen::Vector3d(initial.qvel[joints], initial.qvel[joints + 1], initial.qvel[joints + 2]);
         state_.box_angular_velocity =
             box_rotation * Eigen::Vector3d(initial.qvel[joints + 3], initial.qvel[joints + 4], initial.qvel[joints + 5]);
-        evaluate_terms(state_, terms_);
+        evaluate_terms(state_, own_terms_);
+        // The cross blocks stay zero (the arms share no joint): write_block_diagonal() writes
+        // only the arms' own blocks.
+        terms_.inertia.setZero();
+        terms_.jacobian.setZero();
+        write_block_diagonal(own_terms_, terms_);
         require_arms_as_in_the_mjcf(world, initial, terms_);
         for (std::size_t i = 0; i < palms; ++i) {
-            weld_point_[i] = box_rotation.transpose() * (terms_.palm_position[i] - state_.box_position);
-            weld_rotation_[i] = Eigen::Quaterniond(box_rotation.transpose() * terms_.palm_rotation[i]).normalized();
+            weld_point_[i] = box_rotation.transpose() * (own_terms_[i].palm_position - state_.box_position);
+            weld_rotation_[i] = Eigen::Quaterniond(box_rotation.transpose() * own_terms_[i].palm_rotation).normalized();
         }
     }
 
@@ -181,28 +274,31 @@ public:
     {
         std::array<PlantVector, 4> acceleration{};
         std::array<PositionRate, 4> velocity{};
-        PlantState stage = state_;
-        ArmTerms stage_terms = terms_;
         const std::array<double, 4> fraction{0.0, 0.5, 0.5, 1.0};
+        // The stages after the first evaluate the arms arm by arm (no 14-joint copies); the first
+        // is the state the controller saw, whose solution is kept.
+        PlantState stage;
+        ArmPairTerms stage_terms;
+        RigidGraspSolution stage_solution;
         for (std::size_t k = 0; k < 4; ++k) {
             if (k > 0) {
                 stage = advanced(velocity[k - 1], acceleration[k - 1], fraction[k] * dt);
                 evaluate_terms(stage, stage_terms);
             }
-            RigidGraspSolution stage_solution;
-            solve(stage, stage_terms, tau, box_wrench, stage_solution, /*with_wrenches=*/k == 0);
-            if (k == 0) {
-                solution_ = stage_solution;
-            }
-            velocity[k] << stage.qdot, stage.box_velocity,
-                coopdyn::quaternion_derivative_world(stage.box_orientation, stage.box_angular_velocity).coeffs();
-            acceleration[k] << stage_solution.joint_acceleration, stage_solution.box_acceleration;
+            const PlantState& at = k == 0 ? state_ : stage;
+            RigidGraspSolution& solution = k == 0 ? solution_ : stage_solution;
+            solve_arms(at, k == 0 ? own_terms_ : stage_terms, tau, box_wrench, solution, /*with_wrenches=*/k == 0,
+                       WeldSolver::structured);
+            velocity[k] << at.qdot, at.box_velocity,
+                coopdyn::quaternion_derivative_world(at.box_orientation, at.box_angular_velocity).coeffs();
+            acceleration[k] << solution.joint_acceleration, solution.box_acceleration;
         }
         const PositionRate mean_velocity = (velocity[0] + 2.0 * velocity[1] + 2.0 * velocity[2] + velocity[3]) / 6.0;
         const PlantVector mean_acceleration =
             (acceleration[0] + 2.0 * acceleration[1] + 2.0 * acceleration[2] + acceleration[3]) / 6.0;
         state_ = advanced(mean_velocity, mean_acceleration, dt);
-        evaluate_terms(state_, terms_);
+        evaluate_terms(state_, own_terms_);
+        write_block_diagonal(own_terms_, terms_);
         weld_error_ = current_weld_error();
     }
 
@@ -226,13 +322,17 @@ public:
     void solve(const PlantState& state, const ArmTerms& terms, const JointVector& tau, const Vector6d& box_wrench,
                RigidGraspSolution& out, bool with_wrenches = true, WeldSolver solver = WeldSolver::structured) const
     {
-        const WeldGeometry weld = weld_geometry(state, terms);
-        const bool solved = (solver == WeldSolver::structured && solve_structured(state, terms, weld, tau, box_wrench, out)) ||
-                            (solver == WeldSolver::constraint_space &&
-                             solve_stacked(state, terms, weld, tau, box_wrench, out, with_wrenches, /*generic=*/false));
-        if (!solved) {
-            solve_stacked(state, terms, weld, tau, box_wrench, out, with_wrenches, /*generic=*/true);
+        ArmPairTerms arm_terms;
+        for (std::size_t i = 0; i < palms; ++i) {
+            const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(i), row = 6 * static_cast<Eigen::Index>(i);
+            arm_terms[i].inertia = terms.inertia.block<arm_joints, arm_joints>(joint, joint);
+            arm_terms[i].bias = terms.bias.segment<arm_joints>(joint);
+            arm_terms[i].jacobian = terms.jacobian.block<6, arm_joints>(row, joint);
+            arm_terms[i].jacobian_rate_qdot = terms.jacobian_rate_qdot.segment<6>(row);
+            arm_terms[i].palm_position = terms.palm_position[i];
+            arm_terms[i].palm_rotation = terms.palm_rotation[i];
         }
+        solve_arms(state, arm_terms, tau, box_wrench, out, with_wrenches, solver);
     }
 
 private:
@@ -245,6 +345,19 @@ private:
         std::array<Vector6d, palms> stabilisation{};
         Eigen::Matrix3d box_inertia_world;  ///< R_o I R_o^T, about the centre
     };
+
+    /// solve() on the arms' terms arm by arm.
+    void solve_arms(const PlantState& state, const ArmPairTerms& terms, const JointVector& tau, const Vector6d& box_wrench,
+                    RigidGraspSolution& out, bool with_wrenches, WeldSolver solver) const
+    {
+        const WeldGeometry weld = weld_geometry(state, terms);
+        const bool solved = (solver == WeldSolver::structured && solve_structured(state, terms, weld, tau, box_wrench, out)) ||
+                            (solver == WeldSolver::constraint_space &&
+                             solve_stacked(state, terms, weld, tau, box_wrench, out, with_wrenches, /*generic=*/false));
+        if (!solved) {
+            solve_stacked(state, terms, weld, tau, box_wrench, out, with_wrenches, /*generic=*/true);
+        }
+    }
 
     static Eigen::Vector3d gravity_of(const DualArmBoxModel& world)
     {
@@ -287,21 +400,21 @@ private:
         }
     }
 
-    WeldGeometry weld_geometry(const PlantState& state, const ArmTerms& terms) const
+    WeldGeometry weld_geometry(const PlantState& state, const ArmPairTerms& terms) const
     {
         WeldGeometry weld;
         const Eigen::Matrix3d box_rotation = state.box_orientation.toRotationMatrix();
         weld.box_inertia_world = box_rotation * box_.inertia * box_rotation.transpose();
         const Eigen::Vector3d& w = state.box_angular_velocity;
         for (std::size_t i = 0; i < palms; ++i) {
-            const Eigen::Index row = static_cast<Eigen::Index>(6 * i);
             const Eigen::Vector3d r = box_rotation * weld_point_[i];
             weld.offset.col(static_cast<Eigen::Index>(i)) = r;
-            const Eigen::Vector3d position_error = terms.palm_position[i] - (state.box_position + r);
+            const Eigen::Vector3d position_error = terms[i].palm_position - (state.box_position + r);
             const Eigen::Quaterniond welded_orientation = state.box_orientation * weld_rotation_[i];
             const Eigen::Vector3d rotation_error = coopdyn::quaternion_log(
-                Eigen::Quaterniond(terms.palm_rotation[i]) * welded_orientation.conjugate());
-            const Vector6d palm_twist = terms.jacobian.middleRows<6>(row) * state.qdot;
+                Eigen::Quaterniond(terms[i].palm_rotation) * welded_orientation.conjugate());
+            const Vector6d palm_twist =
+                terms[i].jacobian * state.qdot.segment<arm_joints>(arm_joints * static_cast<Eigen::Index>(i));
             Vector6d velocity_error;
             velocity_error << palm_twist.head<3>() - (state.box_velocity + w.cross(r)), palm_twist.tail<3>() - w;
             Vector6d pose_error;
@@ -327,61 +440,65 @@ private:
     /// only term the first paper's weld lacks; it enters as hSigma_i - Lambda_i beta_i (the kernel
     /// then returns xdd_i - beta_i, and the true h_i = Lambda_i xdd_i - hSigma_i). Returns false,
     /// writing nothing, when an arm's M_i or J_i M_i^-1 J_i^T is not safely positive definite.
-    bool solve_structured(const PlantState& state, const ArmTerms& terms, const WeldGeometry& weld,
+    ///
+    /// Per arm: M_i = L D L^T; [X_i, qdd0_i] = M_i^-1 [J_i^T, tau_i - h_i] (X_i = M_i^-1 J_i^T);
+    /// Lambda_i^-1 = J_i X_i = F E F^T; [Lambda_i, hSigma_i - Lambda_i beta_i] =
+    /// (Lambda_i^-1)^-1 [I, a_i - beta_i]; after the kernel, qdd_i = qdd0_i + X_i h_i. Each step
+    /// runs over both arms before the next: the arms' serial chains (pivot after pivot) are
+    /// independent, so the processor overlaps them.
+    bool solve_structured(const PlantState& state, const ArmPairTerms& terms, const WeldGeometry& weld,
                           const JointVector& tau, const Vector6d& box_wrench, RigidGraspSolution& out) const
     {
-        using ArmMatrix = Eigen::Matrix<double, arm_joints, arm_joints>;
-        using ArmVector = Eigen::Matrix<double, arm_joints, 1>;
         using Matrix6d = Eigen::Matrix<double, 6, 6>;
-        std::array<Eigen::LLT<ArmMatrix>, palms> arm_factor;                      // M_i = L_i L_i^T
-        std::array<Eigen::Matrix<double, arm_joints, 6>, palms> whitened;         // L_i^-1 J_i^T
-        std::array<ArmVector, palms> free_joint_acceleration;                     // M_i^-1 (tau_i - h_i)
-        std::array<coopdyn::ArticulatedInertia<double>, palms> palm_inertia;      // Lambda_i
-        Eigen::Matrix<double, 6 * (palms + 1), 1> h_sigma, accelerations, wrenches;
-        const Eigen::Matrix3d& inertia_world = weld.box_inertia_world;
-        const Eigen::Vector3d& w = state.box_angular_velocity;
+        // One padding column: whole rows of 8 fill the vector registers.
+        constexpr int columns = 8, free_column = 6;
+        std::array<SmallLdlt<arm_joints>, palms> arm_factor;
+        std::array<SmallLdlt<arm_joints>::RowMajorBlock<columns>, palms> joint_solution;  // [X_i, qdd0_i, 0]
+        std::array<SmallLdlt<6>, palms> mobility_factor;
+        std::array<SmallLdlt<6>::RowMajorBlock<columns>, palms> palm_solution;  // [Lambda_i, hSigma_i - Lambda_i beta_i, 0]
         for (std::size_t i = 0; i < palms; ++i) {
-            const Eigen::Index palm = static_cast<Eigen::Index>(i), row = 6 * palm, joint = arm_joints * palm;
-            arm_factor[i].compute(terms.inertia.block<arm_joints, arm_joints>(joint, joint));
-            if (arm_factor[i].info() != Eigen::Success) {
+            if (!arm_factor[i].compute(terms[i].inertia)) {
                 return false;
             }
-            const auto jacobian = terms.jacobian.block<6, arm_joints>(row, joint);
-            // Column by column: fixed-size triangular solves of 7 and 6 unroll; Eigen's blocked
-            // matrix solve costs more than the arithmetic at these sizes.
-            whitened[i] = jacobian.transpose();
-            for (Eigen::Index column = 0; column < 6; ++column) {
-                arm_factor[i].matrixL().solveInPlace(whitened[i].col(column));
-            }
-            const Matrix6d mobility = whitened[i].transpose().lazyProduct(whitened[i]);  // Lambda_i^-1 = J_i M_i^-1 J_i^T
-            const Eigen::LLT<Matrix6d> mobility_factor(mobility);
-            if (mobility_factor.info() != Eigen::Success ||
-                mobility_factor.matrixLLT().diagonal().cwiseAbs2().minCoeff() <=
+            const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(i);
+            joint_solution[i].leftCols<6>() = terms[i].jacobian.transpose();
+            joint_solution[i].col(free_column) = tau.segment<arm_joints>(joint) - terms[i].bias;
+            joint_solution[i].col(columns - 1).setZero();
+        }
+        for (std::size_t i = 0; i < palms; ++i) {
+            arm_factor[i].solve_in_place(joint_solution[i]);
+        }
+        for (std::size_t i = 0; i < palms; ++i) {
+            const Matrix6d mobility = terms[i].jacobian.lazyProduct(joint_solution[i].leftCols<6>());  // Lambda_i^-1
+            if (!mobility_factor[i].compute(mobility) ||
+                mobility_factor[i].pivots().minCoeff() <=
                     Eigen::NumTraits<double>::dummy_precision() * mobility.diagonal().maxCoeff()) {
                 return false;  // the palm cannot move in every direction: the arm is singular
             }
-            // Lambda_i = F^-T F^-1 (Lambda_i^-1 = F F^T): one triangular solve per column, not two.
-            Matrix6d factor_inverse = Matrix6d::Identity();
-            for (Eigen::Index column = 0; column < 6; ++column) {
-                mobility_factor.matrixL().solveInPlace(factor_inverse.col(column));
-            }
-            const Matrix6d inertia = factor_inverse.transpose().lazyProduct(factor_inverse);
-            palm_inertia[i] = coopdyn::ArticulatedInertia<double>(inertia);
-            free_joint_acceleration[i] = arm_factor[i].solve(tau.segment<arm_joints>(joint) - terms.bias.segment<arm_joints>(joint));
-            const Vector6d free_palm_acceleration = jacobian * free_joint_acceleration[i] + terms.jacobian_rate_qdot.segment<6>(row);
-            h_sigma.segment<6>(6 + row) = inertia * (free_palm_acceleration - weld.stabilisation[i]);
+            palm_solution[i].leftCols<6>().setIdentity();
+            palm_solution[i].col(free_column) = terms[i].jacobian * joint_solution[i].col(free_column) +
+                                                terms[i].jacobian_rate_qdot - weld.stabilisation[i];
+            palm_solution[i].col(columns - 1).setZero();
         }
+        std::array<coopdyn::ArticulatedInertia<double>, palms> palm_inertia;  // Lambda_i
+        Eigen::Matrix<double, 6 * (palms + 1), 1> h_sigma, accelerations, wrenches;
+        for (std::size_t i = 0; i < palms; ++i) {
+            mobility_factor[i].solve_in_place(palm_solution[i]);
+            palm_inertia[i] = coopdyn::ArticulatedInertia<double>(palm_solution[i].leftCols<6>());
+            h_sigma.segment<6>(6 + 6 * static_cast<Eigen::Index>(i)) = palm_solution[i].col(free_column);
+        }
+        const Eigen::Matrix3d& inertia_world = weld.box_inertia_world;
+        const Eigen::Vector3d& w = state.box_angular_velocity;
         h_sigma.head<6>() = box_free_wrench(inertia_world, w, box_wrench);
         coopdyn::interaction_wrenches(coopdyn::CentralInertia<double>(box_.mass, inertia_world), palm_inertia,
                                       weld.offset, w, h_sigma, accelerations, wrenches);
         out.box_acceleration = accelerations.head<6>();
         for (std::size_t i = 0; i < palms; ++i) {
-            const Eigen::Index palm = static_cast<Eigen::Index>(i), row = 6 * palm, joint = arm_joints * palm;
-            const Vector6d on_palm = wrenches.segment<6>(6 + row);  // h_i: the box's wrench on palm i
-            // qdd_i = M_i^-1 (tau_i - h_i + J_i^T h_i) = free + L_i^-T (L_i^-1 J_i^T) h_i
-            ArmVector response = whitened[i] * on_palm;
-            arm_factor[i].matrixU().solveInPlace(response);
-            out.joint_acceleration.segment<arm_joints>(joint) = free_joint_acceleration[i] + response;
+            const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(i);
+            const Vector6d on_palm = wrenches.segment<6>(6 + 6 * static_cast<Eigen::Index>(i));  // h_i: the box's wrench on palm i
+            // qdd_i = M_i^-1 (tau_i - h_i + J_i^T h_i) = qdd0_i + X_i h_i
+            out.joint_acceleration.segment<arm_joints>(joint) =
+                joint_solution[i].col(free_column) + joint_solution[i].leftCols<6>() * on_palm;
             out.contact_wrench[i] = -on_palm;
         }
         return true;
@@ -389,9 +506,12 @@ private:
 
     /// WeldSolver::constraint_space (returns false on rank loss) and WeldSolver::generic on the
     /// stacked system A [qdd; a; alpha] = b of the file comment.
-    bool solve_stacked(const PlantState& state, const ArmTerms& terms, const WeldGeometry& weld, const JointVector& tau,
-                       const Vector6d& box_wrench, RigidGraspSolution& out, bool with_wrenches, bool generic) const
+    bool solve_stacked(const PlantState& state, const ArmPairTerms& arm_terms, const WeldGeometry& weld,
+                       const JointVector& tau, const Vector6d& box_wrench, RigidGraspSolution& out, bool with_wrenches,
+                       bool generic) const
     {
+        ArmTerms terms;
+        write_block_diagonal(arm_terms, terms);  // ArmTerms' cross blocks start zero
         const Eigen::Matrix3d& inertia_world = weld.box_inertia_world;
         const Eigen::Vector3d& w = state.box_angular_velocity;
         PlantMatrix inertia = PlantMatrix::Zero();
@@ -435,24 +555,27 @@ private:
         return true;
     }
 
-    /// Each arm's terms by its own recursion (lwr4_dynamics.hpp); the arms share no joint, so the
-    /// off-diagonal blocks are zero.
-    void evaluate_terms(const PlantState& state, ArmTerms& terms) const noexcept
+    /// Each arm's terms by its own recursion (lwr4_dynamics.hpp).
+    void evaluate_terms(const PlantState& state, ArmPairTerms& terms) const noexcept
     {
-        terms.inertia.block<arm_joints, arm_joints>(0, arm_joints).setZero();
-        terms.inertia.block<arm_joints, arm_joints>(arm_joints, 0).setZero();
-        terms.jacobian.block<6, arm_joints>(0, arm_joints).setZero();
-        terms.jacobian.block<6, arm_joints>(6, 0).setZero();
-        Lwr4ArmTerms arm;
+        for (std::size_t i = 0; i < palms; ++i) {
+            const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(i);
+            arms_[i].evaluate(state.q.segment<arm_joints>(joint), state.qdot.segment<arm_joints>(joint), terms[i]);
+        }
+    }
+
+    /// The arms' own blocks of `terms` (the arms share no joint: the cross blocks are left as
+    /// they are, zero).
+    static void write_block_diagonal(const ArmPairTerms& arm_terms, ArmTerms& terms) noexcept
+    {
         for (std::size_t i = 0; i < palms; ++i) {
             const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(i), row = 6 * static_cast<Eigen::Index>(i);
-            arms_[i].evaluate(state.q.segment<arm_joints>(joint), state.qdot.segment<arm_joints>(joint), arm);
-            terms.inertia.block<arm_joints, arm_joints>(joint, joint) = arm.inertia;
-            terms.bias.segment<arm_joints>(joint) = arm.bias;
-            terms.jacobian.block<6, arm_joints>(row, joint) = arm.jacobian;
-            terms.jacobian_rate_qdot.segment<6>(row) = arm.jacobian_rate_qdot;
-            terms.palm_position[i] = arm.palm_position;
-            terms.palm_rotation[i] = arm.palm_rotation;
+            terms.inertia.block<arm_joints, arm_joints>(joint, joint) = arm_terms[i].inertia;
+            terms.bias.segment<arm_joints>(joint) = arm_terms[i].bias;
+            terms.jacobian.block<6, arm_joints>(row, joint) = arm_terms[i].jacobian;
+            terms.jacobian_rate_qdot.segment<6>(row) = arm_terms[i].jacobian_rate_qdot;
+            terms.palm_position[i] = arm_terms[i].palm_position;
+            terms.palm_rotation[i] = arm_terms[i].palm_rotation;
         }
     }
 
@@ -475,10 +598,10 @@ private:
         const Eigen::Matrix3d box_rotation = state_.box_orientation.toRotationMatrix();
         for (std::size_t i = 0; i < palms; ++i) {
             const Eigen::Vector3d r = box_rotation * weld_point_[i];
-            worst[0] = std::max(worst[0], (terms_.palm_position[i] - state_.box_position - r).norm());
+            worst[0] = std::max(worst[0], (own_terms_[i].palm_position - state_.box_position - r).norm());
             const Eigen::Quaterniond welded = state_.box_orientation * weld_rotation_[i];
             worst[1] = std::max(
-                worst[1], coopdyn::quaternion_log(Eigen::Quaterniond(terms_.palm_rotation[i]) * welded.conjugate()).norm());
+                worst[1], coopdyn::quaternion_log(Eigen::Quaterniond(own_terms_[i].palm_rotation) * welded.conjugate()).norm());
         }
         return worst;
     }
@@ -491,7 +614,8 @@ private:
     double stiffness_;
     double damping_;
     PlantState state_;
-    ArmTerms terms_;
+    ArmPairTerms own_terms_;  ///< at state_, arm by arm
+    ArmTerms terms_;          ///< the same, block diagonal (arm_terms())
     RigidGraspSolution solution_;
     std::array<Eigen::Vector3d, palms> weld_point_{};
     std::array<Eigen::Quaterniond, palms> weld_rotation_{};
