@@ -113,7 +113,8 @@ inline BoxInertia box_inertia(const DualArmBoxModel& world, double mass)
 /// run-time loops, which costs more than the arithmetic at 6x6 and 7x7. L D L^T rather than
 /// L L^T for the reason coopdyn::detail::FixedCholesky gives (no square root on the serial chain
 /// of pivots); unlike FixedCholesky it exposes the pivots (the weld solve's rank test) and solves
-/// many right-hand sides at once. Only the lower triangle of the input is read.
+/// many right-hand sides at once. Only the lower triangle of the input is read. Always inlined:
+/// the weld solve calls it for both arms in turn, and inlined the two calls' chains overlap.
 template <int Size> class SmallLdlt {
 public:
     /// Right-hand sides side by side, row-major: each step of the substitutions then updates a
@@ -121,7 +122,7 @@ public:
     template <int Columns> using RowMajorBlock = Eigen::Matrix<double, Size, Columns, Eigen::RowMajor>;
 
     /// Factorises; false when a pivot is not positive (not positive definite, or NaN).
-    template <typename Derived> bool compute(const Eigen::MatrixBase<Derived>& matrix) noexcept
+    template <typename Derived> COOPDYN_INLINE bool compute(const Eigen::MatrixBase<Derived>& matrix) noexcept
     {
         // d_j = a_jj - sum_k l_jk^2 d_k, l_ij = (a_ij - sum_k l_ik l_jk d_k) / d_j (Golub and Van
         // Loan, Matrix Computations, 4.1.2), with scaled_(i, k) = l_ik d_k kept alongside.
@@ -155,7 +156,7 @@ public:
     const Eigen::Matrix<double, Size, 1>& pivots() const noexcept { return pivot_; }
 
     /// B := A^-1 B: L Y = B, then L^T X = D^-1 Y, row by row.
-    template <int Columns> void solve_in_place(RowMajorBlock<Columns>& block) const noexcept
+    template <int Columns> COOPDYN_INLINE void solve_in_place(RowMajorBlock<Columns>& block) const noexcept
     {
         BOX_EXAMPLE_UNROLL
         for (int row = 1; row < Size; ++row) {
