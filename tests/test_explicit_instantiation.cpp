@@ -46,6 +46,8 @@ namespace detail {
 template class FixedCholesky<double, 3>;
 template class FixedCholesky<double, 6>;
 template class FixedCholesky<float, 6>;
+template class FixedLlt<double, 14>;
+template class FixedLlt<float, 6>;
 }  // namespace detail
 
 }  // namespace coopdyn

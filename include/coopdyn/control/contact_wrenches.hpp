@@ -51,16 +51,16 @@ void contact_wrench_bias(const ProjectedDynamics<Scalar, Arms, Joints>& dynamics
                           "contact_wrench_bias: inputs or outputs sized for another controller");
     const Vector6<Scalar> F_x = external_wrench;
     // qdd = Mc^-1 (tau_u + P (Jx^T F_x - h) + Pdot qdot)   (E11: P Jx^T F_x included)
-    scratch.noalias() = dynamics.object_jacobian.transpose() * F_x;
+    scratch.noalias() = dynamics.object_jacobian.transpose().lazyProduct(F_x);
     scratch -= h;
-    qdd.noalias() = dynamics.projector * scratch;
+    qdd.noalias() = dynamics.projector.lazyProduct(scratch);
     qdd += tau_u;
     qdd += dynamics.projector_rate_qdot;
     dynamics.constrained_inertia_solve(qdd, qdd);
     // eta = (Jc^T)^+ (I - P) y with y = M qdd + h - Jx^T F_x. (Jc^T)^+ = B (Jr Jr^T)^-1 Jr and
     // Jr P = 0, so (Jc^T)^+ (I - P) y = (Jc^T)^+ y.
     scratch = -scratch;
-    scratch.noalias() += M * qdd;
+    scratch.noalias() += M.lazyProduct(qdd);
     dynamics.constraint_transpose_pseudo_inverse_times(scratch, bias);
     // w_0 = -G^+ F_x - eta
     bias = -bias;

@@ -118,10 +118,10 @@ struct ControllerData {
     ProjectedDynamics<Scalar, Arms, Joints> dynamics;      ///< P, Jx, Lambda_c, hc, B, ... of this tick
 
     // ---- workspace -----------------------------------------------------------------------------
-    Eigen::LLT<JointMatrix> inertia_factor;                ///< M = L L^T
+    detail::Llt<JointMatrix> inertia_factor;               ///< M = L L^T
     Eigen::Matrix<Scalar, Stack, Joints> whitened_jacobian;  ///< J L^-T
     Eigen::Matrix<Scalar, Stack, Stack> contact_gram;      ///< J M^-1 J^T
-    Eigen::LLT<Eigen::Matrix<Scalar, Stack, Stack>> contact_gram_factor;
+    detail::Llt<Eigen::Matrix<Scalar, Stack, Stack>> contact_gram_factor;
     Eigen::Matrix<Scalar, Joints, Internal> jacobian_basis;  ///< J^T B
     Eigen::Matrix<Scalar, Rows, 6> world_rows;             ///< friction rows acting on {w} wrenches
     InternalMatrix hessian;
@@ -238,8 +238,8 @@ void controller_impedance(const Model& model, Data& data, const Input& input) no
     data.twist_error = input.object.twist - input.desired_twist;
     const Vector6<Scalar> spring_damper = model.damping() * data.twist_error + model.stiffness() * data.pose_error;
     data.motion_wrench = dynamics.task_bias + dynamics.task_inertia * input.desired_acceleration - spring_damper;
-    data.joint_scratch.noalias() = dynamics.object_jacobian.transpose() * data.motion_wrench;
-    data.motion_torque.noalias() = dynamics.projector * data.joint_scratch;
+    data.joint_scratch.noalias() = dynamics.object_jacobian.transpose().lazyProduct(data.motion_wrench);
+    data.motion_torque.noalias() = dynamics.projector.lazyProduct(data.joint_scratch);
     data.external_wrench = dynamics.task_inertia * (input.object_acceleration - input.desired_acceleration) + spring_damper;
 }
 
@@ -333,9 +333,9 @@ template <typename Model, typename Data> void controller_solve_squeeze(const Mod
 template <typename Model, typename Data> void controller_contact_outputs(const Model& model, Data& data) noexcept
 {
     using Scalar = typename Model::Scalar;
-    data.squeeze_torque.noalias() = data.jacobian_basis * data.squeeze;
+    data.squeeze_torque.noalias() = data.jacobian_basis.lazyProduct(data.squeeze);
     data.contact_wrenches = data.contact_wrench_bias;
-    data.contact_wrenches.noalias() += data.dynamics.internal_basis * data.squeeze;
+    data.contact_wrenches.noalias() += data.dynamics.internal_basis.lazyProduct(data.squeeze);
     data.tightest_margin = std::numeric_limits<Scalar>::infinity();
     for (Index i = 0; i < model.arms(); ++i) {
         const Matrix3<Scalar> rotation = data.contact_rotations.template middleCols<3>(3 * i);
@@ -380,9 +380,9 @@ bool controller_posture(const Model& model, Data& data, const Input& input) noex
     }
     data.joint_scratch = tau_n;
     data.inertia_factor.solveInPlace(data.joint_scratch);  // M^-1 tau_0
-    data.stack_scratch.noalias() = input.jacobian * data.joint_scratch;
+    data.stack_scratch.noalias() = input.jacobian.lazyProduct(data.joint_scratch);
     data.contact_gram_factor.solveInPlace(data.stack_scratch);
-    tau_n.noalias() -= input.jacobian.transpose() * data.stack_scratch;
+    tau_n.noalias() -= input.jacobian.transpose().lazyProduct(data.stack_scratch);
     return true;
 }
 

@@ -25,6 +25,7 @@
 #pragma once
 
 #include "coopdyn/config.hpp"
+#include "coopdyn/detail/fixed_cholesky.hpp"
 #include "coopdyn/model/grasp.hpp"
 #include "coopdyn/spatial/inertia.hpp"
 #include "coopdyn/spatial/skew.hpp"
@@ -147,22 +148,10 @@ template <typename Factor> bool regular_cholesky(const Factor& factor) noexcept
     return regular_pivots(factor.matrixLLT().diagonal().cwiseAbs2());
 }
 
-/// X <- T^-1 X for a triangular view T, one column at a time: Eigen's many-right-hand-side
-/// triangular solver is a blocked (GEMM-style) kernel whose packing costs more than the
-/// arithmetic at these sizes, while its one-column solver is unrolled for fixed sizes <= 8.
-template <typename Triangular, typename DerivedX>
-void solve_columns(const Triangular& triangular, const Eigen::MatrixBase<DerivedX>& X_out) noexcept
-{
-    auto& X = const_cast<Eigen::MatrixBase<DerivedX>&>(X_out);
-    for (Index j = 0; j < X.cols(); ++j) {
-        triangular.solveInPlace(X.col(j));
-    }
-}
-
 /// X <- X L^-T for a lower-triangular L (n x n, read from its lower triangle) and X (m x n):
 /// column i of the result is (x_i - sum_{k<i} L_ik y_k) / L_ii. The m right-hand sides are
-/// solved together, so every step is a contiguous m-vector axpy (column-major X); solve_columns
-/// on X^T would walk m serial substitution chains instead.
+/// solved together, so every step is a contiguous m-vector axpy (column-major X); solving the
+/// columns of X^T one by one would walk m serial substitution chains instead.
 template <typename DerivedL, typename DerivedX>
 void solve_rows_transposed_lower(const Eigen::MatrixBase<DerivedL>& L, const Eigen::MatrixBase<DerivedX>& X_out) noexcept
 {
@@ -396,14 +385,14 @@ public:
         auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
         const Index internal = 6 * (arms() - 1);
         const Index free = free_joints();
-        solve_scratch_.noalias() = reduced_q_.transpose() * x;  // x is not read after this line
+        solve_scratch_.noalias() = reduced_q_.transpose().lazyProduct(x);  // x is not read after this line
         solve_internal_.noalias() =
-            reduced_q_.template leftCols<Internal>(internal) * solve_scratch_.template head<Internal>(internal);  // Q1 v1
+            reduced_q_.template leftCols<Internal>(internal).lazyProduct(solve_scratch_.template head<Internal>(internal));  // Q1 v1
         auto free_part = solve_scratch_.template segment<Free>(internal, free);  // (tail<N>(n) ignores n)
-        free_part.noalias() -= free_rows_inertia_ * solve_internal_;  // Q2^T M Q1 v1
+        free_part.noalias() -= free_rows_inertia_.lazyProduct(solve_internal_);  // Q2^T M Q1 v1
         free_inertia_factor_.solveInPlace(free_part);
         out = solve_internal_;
-        out.noalias() += reduced_q_.template rightCols<Free>(free) * free_part;
+        out.noalias() += reduced_q_.template rightCols<Free>(free).lazyProduct(free_part);
     }
 
     Index arms() const noexcept { return constraint_jacobian.rows() / 6; }
@@ -453,11 +442,12 @@ private:
     JointMatrix reduced_q_;        // [Q1 Q2]
     Eigen::Matrix<Scalar, Free, Joints> free_rows_inertia_;  // Q2^T M
     FreeMatrix free_inertia_;      // M22 = Q2^T M Q2
-    Eigen::LLT<FreeMatrix> free_inertia_factor_;
+    detail::Llt<FreeMatrix> free_inertia_factor_;
     Eigen::Matrix<Scalar, Free, 6> task_reduced_;  // E = L22^-1 Q2^T Jx^T
-    Eigen::LLT<Matrix6<Scalar>> task_factor_;
+    detail::Llt<Matrix6<Scalar>> task_factor_;
     mutable Eigen::Matrix<Scalar, Internal, 1> reduced_;  // scratch of the pseudo-inverse products
     StackVector stack_scratch_;
+    Vector6<Scalar> object_twist_rate_;  // Jx Mc^-1 (P h - Pdot qdot) - Jxdot qdot
     JointVector joint_scratch_;
     Eigen::Matrix<Scalar, 1, Joints> reduced_workspace_;
     mutable JointVector solve_scratch_;
@@ -497,6 +487,7 @@ ProjectedDynamics<Scalar, Arms, Joints>::ProjectedDynamics(Index arms, Index joi
       task_factor_(6),
       reduced_(Eigen::Matrix<Scalar, Internal, 1>::Zero(6 * (arms - 1))),
       stack_scratch_(StackVector::Zero(6 * arms)),
+      object_twist_rate_(Vector6<Scalar>::Zero()),
       joint_scratch_(JointVector::Zero(joints)),
       reduced_workspace_(Eigen::Matrix<Scalar, 1, Joints>::Zero(1, joints)),
       solve_scratch_(JointVector::Zero(joints)),
@@ -588,7 +579,7 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::compute(
 
     // Lambda_c^-1 = Jx Mc^-1 P Jx^T = E^T E, E = L22^-1 Q2^T Jx^T (L(15)).
     task_reduced_.noalias() = q2.transpose().lazyProduct(object_jacobian.transpose());
-    detail::solve_columns(free_inertia_factor_.matrixL(), task_reduced_);
+    free_inertia_factor_.solve_lower_in_place(task_reduced_);
     task_factor_.compute(task_reduced_.transpose().lazyProduct(task_reduced_));
     if (!detail::regular_cholesky(task_factor_)) {
         status = ProjectionStatus::singular_task;
@@ -596,17 +587,18 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::compute(
     }
     // Lambda_c = L^-T L^-1 (task_factor_ = L L^T), symmetric by construction.
     Matrix6<Scalar> task_factor_inverse = Matrix6<Scalar>::Identity();
-    detail::solve_columns(task_factor_.matrixL(), task_factor_inverse);
+    task_factor_.solve_lower_in_place(task_factor_inverse);
     task_inertia.noalias() = task_factor_inverse.transpose().lazyProduct(task_factor_inverse);
 
     // The exact rates, on the constraint manifold.
     compute_rates(J, Jdot_qdot, qdot);
 
     // hc = Lambda_c (Jx Mc^-1 (P h - Pdot qdot) - Jxdot qdot) (L(15)).
-    joint_scratch_.noalias() = projector * h;
+    joint_scratch_.noalias() = projector.lazyProduct(h);
     joint_scratch_ -= projector_rate_qdot;
     constrained_inertia_solve(joint_scratch_, joint_scratch_);
-    task_bias.noalias() = task_inertia * (object_jacobian * joint_scratch_ - object_jacobian_rate_qdot);
+    object_twist_rate_ = object_jacobian.lazyProduct(joint_scratch_) - object_jacobian_rate_qdot;
+    task_bias.noalias() = task_inertia.lazyProduct(object_twist_rate_);
     status = ProjectionStatus::ok;
     return status;
 }
@@ -622,9 +614,9 @@ void ProjectedDynamics<Scalar, Arms, Joints>::compute_rates(const Eigen::MatrixB
                                                              const Eigen::MatrixBase<DerivedJdotQdot>& Jdot_qdot,
                                                              const Eigen::MatrixBase<DerivedQdot>& qdot) noexcept
 {
-    object_twist.noalias() = object_jacobian * qdot;
+    object_twist.noalias() = object_jacobian.lazyProduct(qdot);
     const Vector3<Scalar> omega = object_twist.template tail<3>();
-    stack_scratch_.noalias() = J * qdot;  // v
+    stack_scratch_.noalias() = J.lazyProduct(qdot);  // v
     Vector6<Scalar> rate = detail::grasp_times(contact_offsets, Jdot_qdot).vector() +
                            detail::grasp_rate_times(contact_offsets, omega, stack_scratch_);
     // Adot y = Gdot (G^T y) + G (Gdot^T y)
@@ -652,9 +644,9 @@ void ProjectedDynamics<Scalar, Arms, Joints>::constraint_pseudo_inverse_times(
 {
     auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
     auto& reduced = reduced_;
-    reduced.noalias() = internal_basis.transpose() * x;
+    reduced.noalias() = internal_basis.transpose().lazyProduct(x);
     reduced_r().transpose().template triangularView<Eigen::Lower>().solveInPlace(reduced);
-    out.noalias() = reduced_q_.template leftCols<Internal>(reduced.size()) * reduced;
+    out.noalias() = reduced_q_.template leftCols<Internal>(reduced.size()).lazyProduct(reduced);
 }
 
 /// (Jc^T)^+ y = B (Jr Jr^T)^-1 Jr y = B R^-1 Q1^T y: the minimum-norm lambda with Jc^T lambda =
@@ -666,9 +658,9 @@ void ProjectedDynamics<Scalar, Arms, Joints>::constraint_transpose_pseudo_invers
 {
     auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
     auto& reduced = reduced_;
-    reduced.noalias() = reduced_q_.template leftCols<Internal>(reduced.size()).transpose() * y;
+    reduced.noalias() = reduced_q_.template leftCols<Internal>(reduced.size()).transpose().lazyProduct(y);
     reduced_r().template triangularView<Eigen::Upper>().solveInPlace(reduced);
-    out.noalias() = internal_basis * reduced;
+    out.noalias() = internal_basis.lazyProduct(reduced);
 }
 
 /// \brief Projected dynamics L(4), (15), (26) at one configuration, by value (allocates for dynamic

@@ -1,7 +1,8 @@
 /// \file
-/// \brief Cholesky factorisation for small fixed-size SPD matrices, in its square-root-free form
-/// A = L D L^T (L unit lower triangular, D diagonal positive), written out so that the compiler
-/// unrolls it completely.
+/// \brief Cholesky factorisations for small fixed-size SPD matrices, written out so that every loop
+/// has a compile-time trip count: FixedCholesky, the square-root-free form A = L D L^T (L unit
+/// lower triangular, D diagonal positive; the spatial layer's 3x3 and 6x6 solves), and FixedLlt,
+/// A = L L^T (the controller's joint, contact and task matrices, whose factor L it also uses).
 ///
 /// Why not Eigen::LLT / Eigen::LDLT: for 3x3 and 6x6 they run general blocked (LDLT: pivoting)
 /// algorithms with run-time loop bounds; at these sizes the loop overhead dominates the arithmetic.
@@ -13,6 +14,11 @@
 #pragma once
 
 #include "coopdyn/config.hpp"
+
+#include <Eigen/Cholesky>
+
+#include <cmath>
+#include <type_traits>
 
 // Ask for complete unrolling of the fixed-trip-count loops below (the inner bounds depend on the
 // outer index, which compilers do not always unroll on their own).
@@ -95,6 +101,134 @@ private:
     Matrix scaled_;            // l_ij d_j, i > j
     Vector inverse_diagonal_;  // 1 / d_j
 };
+
+/// L L^T of a small fixed-size SPD matrix (the controller's joint, contact and task matrices,
+/// 6 to 24 rows), with the interface of Eigen::LLT that the controller uses plus explicit
+/// triangular solves. Why not Eigen::LLT: it factorises with run-time loop bounds over dynamic
+/// blocks and solves vectors longer than 8 through GEMV panels, which at these sizes costs several
+/// times the arithmetic. Here every loop has a compile-time trip count. Right-looking: once column
+/// j is scaled, the updates of the columns after it are independent of each other, so the serial
+/// chain per column is one square root, one division and one multiply-add.
+template <typename Scalar, int Size> class FixedLlt {
+public:
+    using Matrix = Eigen::Matrix<Scalar, Size, Size>;
+
+    FixedLlt() = default;
+    explicit FixedLlt(Index size) noexcept
+    {
+        COOPDYN_ASSERT(size == Size, "FixedLlt: size must equal the compile-time size");
+        (void)size;
+    }
+
+    /// Factorise the lower triangle of `matrix`; info() says whether every pivot was positive
+    /// (NaN is not). On failure the factor is unusable (not NaN-free).
+    template <typename Derived> FixedLlt& compute(const Eigen::MatrixBase<Derived>& matrix) noexcept
+    {
+        factor_ = matrix;
+        bool positive_definite = true;
+        for (int column = 0; column < Size; ++column) {
+            const Scalar pivot = factor_(column, column);
+            positive_definite = positive_definite && pivot > Scalar(0);
+            using std::sqrt;
+            const Scalar diagonal = sqrt(pivot);
+            factor_(column, column) = diagonal;
+            inverse_diagonal_(column) = Scalar(1) / diagonal;
+                for (int row = column + 1; row < Size; ++row) {
+                factor_(row, column) *= inverse_diagonal_(column);
+            }
+                for (int later = column + 1; later < Size; ++later) {
+                const Scalar multiplier = factor_(later, column);
+                        for (int row = later; row < Size; ++row) {
+                    factor_(row, later) -= factor_(row, column) * multiplier;
+                }
+            }
+        }
+        info_ = positive_definite ? Eigen::Success : Eigen::NumericalIssue;
+        return *this;
+    }
+
+    Eigen::ComputationInfo info() const noexcept { return info_; }
+    /// L in the lower triangle (the strict upper triangle holds the input's, as Eigen::LLT's).
+    const Matrix& matrixLLT() const noexcept { return factor_; }
+
+    /// X <- L^-1 X, column by column (forward substitution, column-oriented: each step is one
+    /// multiply and an axpy below it).
+    template <typename Derived> void solve_lower_in_place(const Eigen::MatrixBase<Derived>& X_out) const noexcept
+    {
+        auto& X = const_cast<Eigen::MatrixBase<Derived>&>(X_out);
+        for (Index j = 0; j < X.cols(); ++j) {
+                for (int k = 0; k < Size; ++k) {
+                const Scalar value = X(k, j) * inverse_diagonal_(k);
+                X(k, j) = value;
+                        for (int row = k + 1; row < Size; ++row) {
+                    X(row, j) -= factor_(row, k) * value;
+                }
+            }
+        }
+    }
+
+    /// X <- L^-T X, column by column (back substitution; row k of L^T is column k of L).
+    template <typename Derived> void solve_upper_in_place(const Eigen::MatrixBase<Derived>& X_out) const noexcept
+    {
+        auto& X = const_cast<Eigen::MatrixBase<Derived>&>(X_out);
+        for (Index j = 0; j < X.cols(); ++j) {
+                for (int k = Size - 1; k >= 0; --k) {
+                Scalar value = X(k, j);
+                        for (int row = k + 1; row < Size; ++row) {
+                    value -= factor_(row, k) * X(row, j);
+                }
+                X(k, j) = value * inverse_diagonal_(k);
+            }
+        }
+    }
+
+    /// X <- A^-1 X.
+    template <typename Derived> void solveInPlace(const Eigen::MatrixBase<Derived>& X) const noexcept
+    {
+        solve_lower_in_place(X);
+        solve_upper_in_place(X);
+    }
+
+private:
+    Matrix factor_ = Matrix::Zero();
+    Eigen::Matrix<Scalar, Size, 1> inverse_diagonal_ = Eigen::Matrix<Scalar, Size, 1>::Ones();
+    Eigen::ComputationInfo info_ = Eigen::Success;
+};
+
+/// Eigen::LLT with FixedLlt's triangular-solve names, for sizes chosen at run time.
+template <typename MatrixType> class DynamicLlt : public Eigen::LLT<MatrixType> {
+public:
+    using Eigen::LLT<MatrixType>::LLT;
+    template <typename Derived> DynamicLlt& compute(const Eigen::MatrixBase<Derived>& matrix)
+    {
+        Eigen::LLT<MatrixType>::compute(matrix);
+        return *this;
+    }
+    /// X <- L^-1 X, one column at a time (Eigen's many-column solver packs like a GEMM).
+    template <typename Derived> void solve_lower_in_place(const Eigen::MatrixBase<Derived>& X_out) const noexcept
+    {
+        auto& X = const_cast<Eigen::MatrixBase<Derived>&>(X_out);
+        for (Index j = 0; j < X.cols(); ++j) {
+            this->matrixL().solveInPlace(X.col(j));
+        }
+    }
+    /// X <- L^-T X, one column at a time.
+    template <typename Derived> void solve_upper_in_place(const Eigen::MatrixBase<Derived>& X_out) const noexcept
+    {
+        auto& X = const_cast<Eigen::MatrixBase<Derived>&>(X_out);
+        for (Index j = 0; j < X.cols(); ++j) {
+            this->matrixU().solveInPlace(X.col(j));
+        }
+    }
+};
+
+/// The L L^T factorisation for a square matrix type: FixedLlt up to 24 rows known at compile
+/// time, Eigen::LLT (as DynamicLlt) otherwise.
+template <typename MatrixType>
+using Llt = std::conditional_t<MatrixType::RowsAtCompileTime != Eigen::Dynamic && MatrixType::RowsAtCompileTime <= 24,
+                               FixedLlt<typename MatrixType::Scalar,
+                                        MatrixType::RowsAtCompileTime == Eigen::Dynamic ? 1 : MatrixType::RowsAtCompileTime>,
+                               DynamicLlt<MatrixType>>;
 
 }  // namespace coopdyn::detail
 
