@@ -3,7 +3,7 @@
 // - Jdot qdot read from MuJoCo (mj_rnePostConstraint + mj_objectAcceleration) against central
 //   differences of J(q) qdot along q(t) = q + t qdot;
 // - the rigid plant's own arm dynamics (lwr4_dynamics.hpp, from lwr4.hpp's DH parameters)
-//   against MuJoCo's on the MJCF's arms;
+//   against MuJoCo's on the MJCF's arms, and its own sin and cos against the library's;
 // - the rigid plant: each palm stays welded; the box obeys Newton-Euler under the reported palm
 //   wrenches, and each arm obeys M qdd + h = tau - J^T w under them; the total mechanical energy
 //   of arms and box is conserved when no torque acts (the weld's forces do no work); its
@@ -23,8 +23,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -83,6 +86,40 @@ TEST(BoxArmTerms, JacobianRateTimesVelocityMatchesCentralDifferences)
     }
     EXPECT_LT(worst, 1e-7);
     RecordProperty("worst_relative_error", std::to_string(worst));
+}
+
+TEST(Lwr4Dynamics, SinCosIsTheLibrarysToRounding)
+{
+    // The recursion's own sin and cos (lwr4_dynamics.hpp) against std::sin and std::cos: within
+    // two units of 2^-53 (the reduction's and the polynomials' rounding) up to the reduction
+    // limit, the library's own beyond it, and NaN for NaN.
+    std::mt19937_64 rng(14);
+    double worst = 0.0;
+    for (const double range : {1.0, 4.0, 10.0, 1e3, 1e5}) {
+        std::uniform_real_distribution<double> uniform(-range, range);
+        for (int trial = 0; trial < 20000; ++trial) {
+            std::array<double, 8> angle;
+            for (double& value : angle) {
+                value = uniform(rng);
+            }
+            const SinCos<8> result = sin_cos(angle);
+            for (std::size_t i = 0; i < angle.size(); ++i) {
+                worst = std::max({worst, std::abs(result.sine[i] - std::sin(angle[i])),
+                                  std::abs(result.cosine[i] - std::cos(angle[i]))});
+            }
+        }
+    }
+    EXPECT_LE(worst, 2.0 * std::numeric_limits<double>::epsilon());
+    const double quarter = 0.25 * lwr4_pi;
+    const std::array<double, 8> special{0.0, -0.0, quarter, 2.0 * quarter, -4.0 * quarter, 6.0 * quarter, 1e7,
+                                        std::numeric_limits<double>::quiet_NaN()};
+    const SinCos<8> result = sin_cos(special);
+    for (std::size_t i = 0; i + 1 < special.size(); ++i) {
+        EXPECT_LE(std::abs(result.sine[i] - std::sin(special[i])), 2.0 * std::numeric_limits<double>::epsilon()) << special[i];
+        EXPECT_LE(std::abs(result.cosine[i] - std::cos(special[i])), 2.0 * std::numeric_limits<double>::epsilon()) << special[i];
+    }
+    EXPECT_TRUE(std::isnan(result.sine[7]) && std::isnan(result.cosine[7]));
+    std::printf("sin_cos vs std::sin, std::cos: %.3g\n", worst);
 }
 
 TEST(Lwr4Dynamics, MatchesMujocosArmsAtRandomStates)
