@@ -16,6 +16,7 @@
 
 #include "arm_systems.hpp"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -224,6 +225,45 @@ TEST(ProjectedDynamics, SingularArmsAreAStatusNotANan)
     EXPECT_EQ(d.compute(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r),
               coopdyn::ProjectionStatus::singular_constraint);
     EXPECT_TRUE(d.projector.allFinite());
+}
+
+// The controller's path: the basis of the body-frame offsets p, built once, rotated into {w}
+// (B = blkdiag(R, ..., R) B(p), r = R p) instead of a Householder QR of r's closed-form basis each
+// tick. It is another basis of the same null(G), so every projection must agree with compute()'s;
+// and without Mc formed, nothing else changes.
+TEST(ProjectedDynamics, ABasisRotatedFromTheBodyFrameGivesTheSameProjection)
+{
+    Rng rng(7);
+    double worst = 0.0;
+    for (const Case& c : cases) {
+        const JointSpaceSystem s = random_joint_space_system(c.arms, c.torso, rng);
+        const Eigen::Matrix3d rotation =
+            Eigen::Quaterniond(Eigen::Vector4d(random_vector(4, rng))).normalized().toRotationMatrix();
+        const MatrixXd body_offsets = rotation.transpose() * s.r;
+        const MatrixXd body_basis = coopdyn::internal_wrench_basis(body_offsets);
+        MatrixXd basis(body_basis.rows(), body_basis.cols());
+        for (Index block = 0; block < 2 * c.arms; ++block) {
+            basis.middleRows<3>(3 * block) = rotation * body_basis.middleRows<3>(3 * block);
+        }
+        const VectorXd jdot_qdot = s.Jdot * s.qdot;
+        Dynamics reference(c.arms, s.joints), rotated(c.arms, s.joints);
+        reference.compute(s.M, s.h, s.J, jdot_qdot, s.qdot, s.r);
+        rotated.form_constrained_inertia = false;
+        const auto counts = allocation_counter::count_allocations(
+            [&] { rotated.compute_with_basis(s.M, s.h, s.J, jdot_qdot, s.qdot, s.r, basis); });
+        EXPECT_EQ(counts.operator_new + counts.eigen, 0);
+        EXPECT_GT((rotated.internal_basis - reference.internal_basis).norm(), 1e-3) << "a different basis";
+        const MatrixXd null_projector = basis * basis.transpose();
+        worst = std::max({worst, relative(null_projector, reference.internal_basis * reference.internal_basis.transpose()),
+                          relative(rotated.projector, reference.projector),
+                          relative(rotated.object_jacobian, reference.object_jacobian),
+                          relative(rotated.task_inertia, reference.task_inertia),
+                          relative(rotated.task_bias, reference.task_bias),
+                          relative(rotated.projector_rate_qdot, reference.projector_rate_qdot)});
+        EXPECT_EQ(rotated.constrained_inertia, MatrixXd::Identity(s.joints, s.joints)) << "Mc not formed";
+    }
+    std::printf("rotated body-frame basis against compute(): worst relative difference %.1e\n", worst);
+    EXPECT_LT(worst, 1e-13);
 }
 
 TEST(ProjectedDynamics, FixedSizesAgreeWithDynamicAndAllocateNothing)

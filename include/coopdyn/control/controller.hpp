@@ -115,9 +115,12 @@ struct ControllerData {
     JointVector joint_acceleration;
     Eigen::Matrix<Scalar, 3, Arms> contact_offsets;        ///< r_i = R_o p_i, {w}
     Eigen::Matrix<Scalar, 3, times_three(Arms)> contact_rotations;  ///< [R_c1 ... R_cK], {c_i} to {w}
-    ProjectedDynamics<Scalar, Arms, Joints> dynamics;      ///< P, Jx, Lambda_c, hc, B, ... of this tick
+    /// P, Jx, Lambda_c, hc, B, ... of this tick; the tick does not form Mc
+    /// (dynamics.form_constrained_inertia is false: set it to read dynamics.constrained_inertia).
+    ProjectedDynamics<Scalar, Arms, Joints> dynamics;
 
     // ---- workspace -----------------------------------------------------------------------------
+    Eigen::Matrix<Scalar, Stack, Internal> internal_basis;  ///< B = blkdiag(R_o, ..., R_o) B_body
     detail::Llt<JointMatrix> inertia_factor;               ///< M = L L^T
     Eigen::Matrix<Scalar, Stack, Joints> whitened_jacobian;  ///< J L^-T
     Eigen::Matrix<Scalar, Stack, Stack> contact_gram;      ///< J M^-1 J^T
@@ -158,6 +161,7 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       contact_offsets(Eigen::Matrix<Scalar, 3, Arms>::Zero(3, model.arms())),
       contact_rotations(Eigen::Matrix<Scalar, 3, times_three(Arms)>::Zero(3, 3 * model.arms())),
       dynamics(model.arms(), model.joints()),
+      internal_basis(model.body_internal_basis()),
       inertia_factor(model.joints()),
       whitened_jacobian(Eigen::Matrix<Scalar, Stack, Joints>::Zero(6 * model.arms(), model.joints())),
       contact_gram(Eigen::Matrix<Scalar, Stack, Stack>::Zero(6 * model.arms(), 6 * model.arms())),
@@ -179,6 +183,7 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       joint_scratch(JointVector::Zero(model.joints())),
       stack_scratch(StackVector::Zero(6 * model.arms()))
 {
+    dynamics.form_constrained_inertia = false;
     if (model.qp_options().iteration_limit > 0) {
         qp.set_iteration_limit(model.qp_options().iteration_limit);
         fallback_qp.set_iteration_limit(model.qp_options().iteration_limit);
@@ -209,12 +214,17 @@ const char* controller_input_problem(const ControllerInput<Scalar, Arms, Joints>
     return "none";
 }
 
-/// The grasp in {w} from the object's orientation: r_i = R_o p_i, R_ci = R_o R_i, and the
+/// The grasp in {w} from the object's orientation: r_i = R_o p_i, R_ci = R_o R_i, the internal
+/// wrench basis B = blkdiag(R_o, ..., R_o) B_body (ProjectedDynamics::compute_with_basis), and the
 /// friction rows acting on {w} wrenches, A_w = A blkdiag(R_ci^T, R_ci^T).
 template <typename Model, typename Data>
 void controller_grasp(const Model& model, Data& data, const Matrix3<typename Model::Scalar>& object_rotation) noexcept
 {
     using Scalar = typename Model::Scalar;
+    for (Index block = 0; block < 2 * model.arms(); ++block) {
+        data.internal_basis.template middleRows<3>(3 * block).noalias() =
+            object_rotation.lazyProduct(model.body_internal_basis().template middleRows<3>(3 * block));
+    }
     for (Index i = 0; i < model.arms(); ++i) {
         data.contact_offsets.col(i).noalias() = object_rotation * model.contact(i).frame.position;
         const Matrix3<Scalar> rotation = object_rotation * model.contact_rotation(i);
@@ -434,8 +444,8 @@ controller_tick(const ControllerModel<Scalar, Arms, Joints, Edges>& model, Contr
         return data.torque;
     }
     detail::controller_grasp(model, data, input.object.pose.orientation.toRotationMatrix());
-    if (data.dynamics.compute(input.inertia, input.bias, input.jacobian, input.jacobian_rate_qdot, input.velocities,
-                              data.contact_offsets) != ProjectionStatus::ok) {
+    if (data.dynamics.compute_with_basis(input.inertia, input.bias, input.jacobian, input.jacobian_rate_qdot,
+                                         input.velocities, data.contact_offsets, data.internal_basis) != ProjectionStatus::ok) {
         detail::controller_no_control(data, ControlStatus::singular, input.bias);
         return data.torque;
     }

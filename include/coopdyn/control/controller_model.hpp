@@ -162,6 +162,10 @@ public:
     const RowVector& contact_frame_bounds() const noexcept { return friction_bounds_; }
     const RowVector& row_norms() const noexcept { return friction_row_norms_; }
     Index row_offset(Index i) const noexcept { return row_offsets_[static_cast<std::size_t>(i)]; }
+    /// The orthonormal internal-wrench basis of the contacts in the object's frame
+    /// (internal_wrench_basis of the contact positions p_i): each tick only rotates it into {w}
+    /// (ProjectedDynamics::compute_with_basis).
+    const Eigen::Matrix<Scalar, Stack, Internal>& body_internal_basis() const noexcept { return body_internal_basis_; }
     Index row_count(Index i) const noexcept { return coopdyn::friction_rows(contact(i).friction.pyramid_edges); }
 
 private:
@@ -182,6 +186,7 @@ private:
     RowMatrix friction_rows_;
     RowVector friction_bounds_;
     RowVector friction_row_norms_;
+    Eigen::Matrix<Scalar, Stack, Internal> body_internal_basis_;
 };
 
 template <typename Scalar, int Arms, int Joints, int Edges>
@@ -259,6 +264,11 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::build_rows()
                                     friction_bounds_.segment(row_offset(i), row_count(i)));
     }
     friction_row_norms_ = friction_rows_.rowwise().norm();
+    Eigen::Matrix<Scalar, 3, Arms> positions(3, arms_);
+    for (Index i = 0; i < arms_; ++i) {
+        positions.col(i) = contact(i).frame.position;
+    }
+    body_internal_basis_ = internal_wrench_basis(positions);
 }
 
 /// \brief What the user's kinematics/dynamics library and state estimate give the controller each

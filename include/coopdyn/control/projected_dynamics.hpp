@@ -229,6 +229,27 @@ void householder_q(const Eigen::MatrixBase<DerivedV>& reflectors, const Eigen::M
     }
 }
 
+/// Whether B is orthonormal and G(r) B = 0, to 1e-8 (a debug check; allocates nothing).
+template <typename DerivedR, typename DerivedB>
+bool is_internal_basis(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedB>& B) noexcept
+{
+    using Scalar = typename DerivedB::Scalar;
+    using std::abs;
+    const Scalar tolerance(1e-8);
+    for (Index j = 0; j < B.cols(); ++j) {
+        for (Index k = 0; k <= j; ++k) {
+            const Scalar expected = j == k ? Scalar(1) : Scalar(0);
+            if (!(abs(B.col(j).dot(B.col(k)) - expected) < tolerance)) {
+                return false;
+            }
+        }
+        if (!(grasp_times(r, B.col(j)).vector().norm() < tolerance * (Scalar(1) + r.norm()))) {
+            return false;
+        }
+    }
+    return true;
+}
+
 /// The closed-form basis of null(G), 6K x 6(K-1), not orthonormal: column 6(i-1)+a is the unit
 /// wrench e_a at contact i balanced by the same wrench moved to contact 1 and reversed,
 /// w_1 = -G(r_i - r_1) e_a, w_i = e_a, so that G_1 w_1 + G_i w_i = 0.
@@ -295,9 +316,11 @@ internal_wrench_basis(const Eigen::MatrixBase<DerivedR>& r)
     const Index arms = r.cols();
     Basis closed_form = Basis::Zero(6 * arms, 6 * (arms - 1));
     detail::closed_form_internal_basis(r, closed_form);
-    Basis reflectors(6 * arms, 6 * (arms - 1));
-    Eigen::Matrix<Scalar, internal_wrench_dimension(Arms), 1> tau(6 * (arms - 1));
-    Eigen::Matrix<Scalar, 1, internal_wrench_dimension(Arms)> workspace(6 * (arms - 1));
+    Basis reflectors = Basis::Zero(6 * arms, 6 * (arms - 1));
+    Eigen::Matrix<Scalar, internal_wrench_dimension(Arms), 1> tau =
+        Eigen::Matrix<Scalar, internal_wrench_dimension(Arms), 1>::Zero(6 * (arms - 1));
+    Eigen::Matrix<Scalar, 1, internal_wrench_dimension(Arms)> workspace =
+        Eigen::Matrix<Scalar, 1, internal_wrench_dimension(Arms)>::Zero(6 * (arms - 1));
     detail::householder_qr_in_place(closed_form, reflectors, tau);
     Basis basis(6 * arms, 6 * (arms - 1));
     detail::householder_q(reflectors, tau, basis, workspace);
@@ -354,7 +377,38 @@ public:
               typename DerivedR>
     ProjectionStatus compute(const Eigen::MatrixBase<DerivedM>& M, const Eigen::MatrixBase<DerivedH>& h,
                              const Eigen::MatrixBase<DerivedJ>& J, const Eigen::MatrixBase<DerivedJdotQdot>& Jdot_qdot,
-                             const Eigen::MatrixBase<DerivedQdot>& qdot, const Eigen::MatrixBase<DerivedR>& r) noexcept;
+                             const Eigen::MatrixBase<DerivedQdot>& qdot, const Eigen::MatrixBase<DerivedR>& r) noexcept
+    {
+        compute_basis(r);
+        return evaluate(M, h, J, Jdot_qdot, qdot, r);
+    }
+
+    /// compute() with the internal-wrench basis B given (6K x 6(K-1), orthonormal, G(r) B = 0;
+    /// asserted in debug builds) instead of built from r by a Householder QR. For an object whose
+    /// contacts are fixed in its frame, r_i = R_o p_i and G(R_o p) = R6 G(p) blkdiag(R6^T, ...),
+    /// R6 = blkdiag(R_o, R_o), so B = blkdiag(R6, ..., R6) B(p): the basis of the body-frame
+    /// offsets, built once, rotated each tick (the controller does this). Any orthonormal basis of
+    /// null(G) gives the same P, Jx, Lambda_c and hc; B only fixes the coordinates z of w = B z.
+    template <typename DerivedM, typename DerivedH, typename DerivedJ, typename DerivedJdotQdot, typename DerivedQdot,
+              typename DerivedR, typename DerivedB>
+    ProjectionStatus compute_with_basis(const Eigen::MatrixBase<DerivedM>& M, const Eigen::MatrixBase<DerivedH>& h,
+                                        const Eigen::MatrixBase<DerivedJ>& J,
+                                        const Eigen::MatrixBase<DerivedJdotQdot>& Jdot_qdot,
+                                        const Eigen::MatrixBase<DerivedQdot>& qdot, const Eigen::MatrixBase<DerivedR>& r,
+                                        const Eigen::MatrixBase<DerivedB>& basis) noexcept
+    {
+        COOPDYN_REQUIRE_SHAPE(basis.rows() == 6 * arms() && basis.cols() == 6 * (arms() - 1),
+                              "projected dynamics: the basis must be 6K x 6(K - 1)");
+        internal_basis = basis;
+        COOPDYN_ASSERT(detail::is_internal_basis(r, internal_basis),
+                       "compute_with_basis: the basis must be orthonormal and span null(G(r))");
+        return evaluate(M, h, J, Jdot_qdot, qdot, r);
+    }
+
+    /// Whether compute() forms Mc (constrained_inertia). The solves never read it (they use its
+    /// block form, constrained_inertia_solve); it is an output for the user. The controller turns
+    /// it off: forming the 14 x 14 Mc of two 7-joint arms costs about 5 % of its tick.
+    bool form_constrained_inertia = true;
 
     /// x -> Jc^+ x (6K -> Q), the minimum-norm solution of Jc y = N x.
     template <typename DerivedIn, typename DerivedOut>
@@ -420,7 +474,12 @@ private:
     using FreeMatrix = Eigen::Matrix<Scalar, Free, Free>;
 
     Index free_joints() const noexcept { return reduced_q_.cols() - 6 * (arms() - 1); }
-    void compute_basis() noexcept;
+    template <typename DerivedR> void compute_basis(const Eigen::MatrixBase<DerivedR>& r) noexcept;
+    template <typename DerivedM, typename DerivedH, typename DerivedJ, typename DerivedJdotQdot, typename DerivedQdot,
+              typename DerivedR>
+    ProjectionStatus evaluate(const Eigen::MatrixBase<DerivedM>& M, const Eigen::MatrixBase<DerivedH>& h,
+                              const Eigen::MatrixBase<DerivedJ>& J, const Eigen::MatrixBase<DerivedJdotQdot>& Jdot_qdot,
+                              const Eigen::MatrixBase<DerivedQdot>& qdot, const Eigen::MatrixBase<DerivedR>& r) noexcept;
     template <typename DerivedJ, typename DerivedJdotQdot, typename DerivedQdot>
     void compute_rates(const Eigen::MatrixBase<DerivedJ>& J, const Eigen::MatrixBase<DerivedJdotQdot>& Jdot_qdot,
                        const Eigen::MatrixBase<DerivedQdot>& qdot) noexcept;
@@ -501,9 +560,11 @@ ProjectedDynamics<Scalar, Arms, Joints>::ProjectedDynamics(Index arms, Index joi
 /// B from the closed-form basis by a Householder QR (as internal_wrench_basis; no allocation: the
 /// reflectors and the workspace were sized at construction).
 template <typename Scalar, int Arms, int Joints>
-void ProjectedDynamics<Scalar, Arms, Joints>::compute_basis() noexcept
+template <typename DerivedR>
+void ProjectedDynamics<Scalar, Arms, Joints>::compute_basis(const Eigen::MatrixBase<DerivedR>& r) noexcept
 {
-    detail::closed_form_internal_basis(contact_offsets, closed_form_basis_);
+    COOPDYN_REQUIRE_SHAPE(r.cols() == arms(), "projected dynamics: r sized for another number of arms");
+    detail::closed_form_internal_basis(r, closed_form_basis_);
     detail::householder_qr_in_place(closed_form_basis_, basis_reflectors_, basis_tau_);
     detail::householder_q(basis_reflectors_, basis_tau_, internal_basis, basis_workspace_);
 }
@@ -511,7 +572,7 @@ void ProjectedDynamics<Scalar, Arms, Joints>::compute_basis() noexcept
 template <typename Scalar, int Arms, int Joints>
 template <typename DerivedM, typename DerivedH, typename DerivedJ, typename DerivedJdotQdot, typename DerivedQdot,
           typename DerivedR>
-ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::compute(
+ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::evaluate(
     const Eigen::MatrixBase<DerivedM>& M, const Eigen::MatrixBase<DerivedH>& h, const Eigen::MatrixBase<DerivedJ>& J,
     const Eigen::MatrixBase<DerivedJdotQdot>& Jdot_qdot, const Eigen::MatrixBase<DerivedQdot>& qdot,
     const Eigen::MatrixBase<DerivedR>& r) noexcept
@@ -522,7 +583,7 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::compute(
                               M.cols() == joints && h.size() == joints && qdot.size() == joints &&
                               Jdot_qdot.size() == 6 * arms(),
                           "projected dynamics: inputs sized for another number of arms or joints");
-    // Grasp geometry: G, Jx = (G G^T)^-1 G J, Jc = J - G^T Jx, B. G G^T is the composite inertia
+    // Grasp geometry (B is already set): G, Jx = (G G^T)^-1 G J, Jc = J - G^T Jx. G G^T is the composite inertia
     // of unit masses with unit rotational inertia at the r_i (G_i diag(I, I) G_i^T), solved in
     // closed form; G and G^T are applied per contact (G_i = [[I, 0], [S(r_i), I]], (24)).
     contact_offsets = r;
@@ -536,7 +597,6 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::compute(
                 J.template block<6, 1>(6 * i, j) - column.at_point(contact_offsets.col(i)).vector();
         }
     }
-    compute_basis();
 
     // Jc^+ through Jr = B^T J (errata E10), by a Householder QR Jr^T = Q1 R: Jr Jr^T = R^T R, and
     // R's diagonal is its Cholesky factor's up to signs, so the pivot test of a Cholesky
@@ -567,9 +627,11 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::compute(
 
     // Mc = P M + I - P = Q2 (Q2^T M) + I - P (L(26)); M22 = (Q2^T M) Q2 (the class comment).
     free_rows_inertia_.noalias() = q2.transpose().lazyProduct(M);
-    constrained_inertia = -projector;
-    constrained_inertia.diagonal().array() += Scalar(1);
-    constrained_inertia.noalias() += q2.lazyProduct(free_rows_inertia_);
+    if (form_constrained_inertia) {
+        constrained_inertia = -projector;
+        constrained_inertia.diagonal().array() += Scalar(1);
+        constrained_inertia.noalias() += q2.lazyProduct(free_rows_inertia_);
+    }
     free_inertia_.noalias() = free_rows_inertia_.lazyProduct(q2);
     free_inertia_factor_.compute(free_inertia_);
     if (free_inertia_factor_.info() != Eigen::Success) {
