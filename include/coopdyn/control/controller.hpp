@@ -126,10 +126,9 @@ struct ControllerData {
     Eigen::Matrix<Scalar, Stack, Stack> contact_gram;      ///< J M^-1 J^T
     detail::Llt<Eigen::Matrix<Scalar, Stack, Stack>> contact_gram_factor;
     Eigen::Matrix<Scalar, Joints, Internal> jacobian_basis;  ///< J^T B
-    Eigen::Matrix<Scalar, Rows, 6> world_rows;             ///< friction rows acting on {w} wrenches
     InternalMatrix hessian;
     InternalVector gradient;
-    Eigen::Matrix<Scalar, Rows, Internal> constraints;
+    Eigen::Matrix<Scalar, Rows, Internal> constraints;    ///< C, constant (ControllerModel::contact_qp_constraints)
     Eigen::Matrix<Scalar, Rows, 1> bounds;
     QpSolver<Scalar, Internal, Rows> qp;
     Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)> fallback_hessian;
@@ -167,10 +166,9 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       contact_gram(Eigen::Matrix<Scalar, Stack, Stack>::Zero(6 * model.arms(), 6 * model.arms())),
       contact_gram_factor(6 * model.arms()),
       jacobian_basis(Eigen::Matrix<Scalar, Joints, Internal>::Zero(model.joints(), 6 * (model.arms() - 1))),
-      world_rows(Eigen::Matrix<Scalar, Rows, 6>::Zero(model.rows(), 6)),
       hessian(InternalMatrix::Zero(6 * (model.arms() - 1), 6 * (model.arms() - 1))),
       gradient(InternalVector::Zero(6 * (model.arms() - 1))),
-      constraints(Eigen::Matrix<Scalar, Rows, Internal>::Zero(model.rows(), 6 * (model.arms() - 1))),
+      constraints(model.contact_qp_constraints()),
       bounds(Eigen::Matrix<Scalar, Rows, 1>::Zero(model.rows())),
       qp(6 * (model.arms() - 1), model.rows()),
       fallback_hessian(Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)>::Zero(6 * model.arms() - 5,
@@ -214,9 +212,8 @@ const char* controller_input_problem(const ControllerInput<Scalar, Arms, Joints>
     return "none";
 }
 
-/// The grasp in {w} from the object's orientation: r_i = R_o p_i, R_ci = R_o R_i, the internal
-/// wrench basis B = blkdiag(R_o, ..., R_o) B_body (ProjectedDynamics::compute_with_basis), and the
-/// friction rows acting on {w} wrenches, A_w = A blkdiag(R_ci^T, R_ci^T).
+/// The grasp in {w} from the object's orientation: r_i = R_o p_i, R_ci = R_o R_i and the internal
+/// wrench basis B = blkdiag(R_o, ..., R_o) B_body (ProjectedDynamics::compute_with_basis).
 template <typename Model, typename Data>
 void controller_grasp(const Model& model, Data& data, const Matrix3<typename Model::Scalar>& object_rotation) noexcept
 {
@@ -229,10 +226,6 @@ void controller_grasp(const Model& model, Data& data, const Matrix3<typename Mod
         data.contact_offsets.col(i).noalias() = object_rotation * model.contact(i).frame.position;
         const Matrix3<Scalar> rotation = object_rotation * model.contact_rotation(i);
         data.contact_rotations.template middleCols<3>(3 * i) = rotation;
-        const auto rows = model.contact_frame_rows().middleRows(model.row_offset(i), model.row_count(i));
-        auto world = data.world_rows.middleRows(model.row_offset(i), model.row_count(i));
-        world.template leftCols<3>().noalias() = rows.template leftCols<3>() * rotation.transpose();
-        world.template rightCols<3>().noalias() = rows.template rightCols<3>() * rotation.transpose();
     }
 }
 
@@ -253,8 +246,10 @@ void controller_impedance(const Model& model, Data& data, const Input& input) no
     data.external_wrench = dynamics.task_inertia * (input.object_acceleration - input.desired_acceleration) + spring_damper;
 }
 
-/// The contact QP in z (L(20)-(25), E10): rows C = A_w B_i, bounds d = b - A_w w_0,i per contact,
-/// and the objective's H and g (SqueezeObjective).
+/// The contact QP in z (L(20)-(25), E10): per contact the rows C = A_w B_i (constant,
+/// ControllerModel::contact_qp_constraints, set at construction) and the bounds
+/// d = b - A_w w_0,i = b - A_i [R_ci^T f_0,i; R_ci^T t_0,i], and the objective's H and g
+/// (SqueezeObjective; its moment term's B_m^T B_m is constant too, ControllerModel::moment_gram).
 template <typename Model, typename Data, typename Input>
 void controller_contact_qp(const Model& model, Data& data, const Input& input) noexcept
 {
@@ -266,19 +261,19 @@ void controller_contact_qp(const Model& model, Data& data, const Input& input) n
     data.jacobian_basis.noalias() = input.jacobian.transpose().lazyProduct(basis);
     data.hessian.noalias() = objective.torque_weight * data.jacobian_basis.transpose().lazyProduct(data.jacobian_basis);
     data.hessian.diagonal().array() += objective.squeeze_weight;
+    data.hessian.noalias() += objective.moment_weight * model.moment_gram();
     data.gradient.setZero();
     for (Index i = 0; i < model.arms(); ++i) {
         const auto moment_rows = basis.template middleRows<3>(6 * i + 3);
-        data.hessian.noalias() += objective.moment_weight * moment_rows.transpose() * moment_rows;
-        data.gradient.noalias() +=
-            objective.moment_weight * moment_rows.transpose() * data.contact_wrench_bias.template segment<3>(6 * i + 3);
-        const auto world = data.world_rows.middleRows(model.row_offset(i), model.row_count(i));
-        data.constraints.middleRows(model.row_offset(i), model.row_count(i)).noalias() =
-            world * basis.template middleRows<6>(6 * i);
+        const auto bias = data.contact_wrench_bias.template segment<6>(6 * i);
+        data.gradient.noalias() += objective.moment_weight * moment_rows.transpose().lazyProduct(bias.template tail<3>());
+        const Matrix3<Scalar> rotation = data.contact_rotations.template middleCols<3>(3 * i);
+        Vector6<Scalar> bias_in_contact_frame;
+        bias_in_contact_frame << rotation.transpose() * bias.template head<3>(), rotation.transpose() * bias.template tail<3>();
         data.bounds.segment(model.row_offset(i), model.row_count(i)) =
             model.contact_frame_bounds().segment(model.row_offset(i), model.row_count(i));
         data.bounds.segment(model.row_offset(i), model.row_count(i)).noalias() -=
-            world * data.contact_wrench_bias.template segment<6>(6 * i);
+            model.contact_frame_rows().middleRows(model.row_offset(i), model.row_count(i)).lazyProduct(bias_in_contact_frame);
     }
 }
 

@@ -166,6 +166,14 @@ public:
     /// (internal_wrench_basis of the contact positions p_i): each tick only rotates it into {w}
     /// (ProjectedDynamics::compute_with_basis).
     const Eigen::Matrix<Scalar, Stack, Internal>& body_internal_basis() const noexcept { return body_internal_basis_; }
+    /// The contact QP's constraint matrix C = A_i blkdiag(R_i^T, R_i^T) B_body,i per contact
+    /// (rows() x 6(K - 1)). Constant: the basis turns with the object, B_i = blkdiag(R_o, R_o)
+    /// B_body,i, and contact frame i with it, R_ci = R_o R_i, so the contact-frame rows acting on
+    /// the {w} wrench B_i z give A_i blkdiag(R_ci^T, R_ci^T) B_i = A_i blkdiag(R_i^T, R_i^T) B_body,i.
+    const Eigen::Matrix<Scalar, Rows, Internal>& contact_qp_constraints() const noexcept { return contact_qp_constraints_; }
+    /// sum_i B_m,i^T B_m,i over the basis' moment rows (the objective's moment term), constant for
+    /// the same reason (B_m,i = R_o B_body,m,i).
+    const Eigen::Matrix<Scalar, Internal, Internal>& moment_gram() const noexcept { return moment_gram_; }
     Index row_count(Index i) const noexcept { return coopdyn::friction_rows(contact(i).friction.pyramid_edges); }
 
 private:
@@ -187,6 +195,8 @@ private:
     RowVector friction_bounds_;
     RowVector friction_row_norms_;
     Eigen::Matrix<Scalar, Stack, Internal> body_internal_basis_;
+    Eigen::Matrix<Scalar, Rows, Internal> contact_qp_constraints_;
+    Eigen::Matrix<Scalar, Internal, Internal> moment_gram_;
 };
 
 template <typename Scalar, int Arms, int Joints, int Edges>
@@ -269,6 +279,20 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::build_rows()
         positions.col(i) = contact(i).frame.position;
     }
     body_internal_basis_ = internal_wrench_basis(positions);
+    const Index internal = body_internal_basis_.cols();
+    contact_qp_constraints_ = Eigen::Matrix<Scalar, Rows, Internal>::Zero(total, internal);
+    moment_gram_ = Eigen::Matrix<Scalar, Internal, Internal>::Zero(internal, internal);
+    for (Index i = 0; i < arms_; ++i) {
+        Eigen::Matrix<Scalar, 6, Internal> in_contact_frame(6, internal);
+        in_contact_frame.template topRows<3>() =
+            contact_rotation(i).transpose() * body_internal_basis_.template middleRows<3>(6 * i);
+        in_contact_frame.template bottomRows<3>() =
+            contact_rotation(i).transpose() * body_internal_basis_.template middleRows<3>(6 * i + 3);
+        contact_qp_constraints_.middleRows(row_offset(i), row_count(i)) =
+            friction_rows_.middleRows(row_offset(i), row_count(i)) * in_contact_frame;
+        const auto moment_rows = body_internal_basis_.template middleRows<3>(6 * i + 3);
+        moment_gram_ += moment_rows.transpose() * moment_rows;
+    }
 }
 
 /// \brief What the user's kinematics/dynamics library and state estimate give the controller each

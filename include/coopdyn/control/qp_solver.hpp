@@ -21,12 +21,14 @@
 ///   satisfies p together with the active rows: the problem is infeasible;
 /// - when no row is violated, x is optimal (all KKT conditions hold).
 ///
-/// Numerics: H is factorised once (Eigen::LLT); the solver keeps J = L^-T Q (Q orthogonal) and the
-/// upper-triangular R with J^T [active rows as columns] = [R; 0], updated by Givens rotations when
-/// a row enters or leaves (never refactorised, never inverted).
+/// Numerics: H is factorised once (L L^T: detail::FixedLlt for fixed sizes, Eigen::LLT
+/// otherwise); the solver keeps J = L^-T Q (Q orthogonal) and the upper-triangular R with
+/// J^T [active rows as columns] = [R; 0], updated by Givens rotations when a row enters or leaves
+/// (never refactorised, never inverted).
 #pragma once
 
 #include "coopdyn/config.hpp"
+#include "coopdyn/detail/fixed_cholesky.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -635,7 +637,7 @@ private:
     Index variables_;
     Index rows_;
     int iteration_limit_;
-    Eigen::LLT<Matrix> llt_;           ///< H = L L^T
+    detail::Llt<Matrix> llt_;          ///< H = L L^T (unrolled for fixed sizes)
     Vector gradient_;                  ///< g
     ConstraintMatrix constraints_;     ///< C^T: row i's normal c_i is column i
     RowVector bounds_;                 ///< d
