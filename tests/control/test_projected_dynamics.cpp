@@ -266,6 +266,34 @@ TEST(ProjectedDynamics, ABasisRotatedFromTheBodyFrameGivesTheSameProjection)
     EXPECT_LT(worst, 1e-13);
 }
 
+// E12's posture projection N^T tau = tau - J^T (J M^-1 J^T)^-1 J M^-1 tau from the projection's own
+// factors (no J M^-1 J^T) against the printed formula with dense inverses, for every arm case
+// (shared torso, K = 2..4) and torques of several scales.
+TEST(ProjectedDynamics, SelfMotionProjectionIsTheDynamicallyConsistentNullSpaceProjector)
+{
+    Rng rng(8);
+    double worst = 0.0, worst_motion = 0.0;
+    for (const Case& c : cases) {
+        const JointSpaceSystem s = random_joint_space_system(c.arms, c.torso, rng);
+        const Dynamics d = coopdyn::projected_dynamics(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r);
+        ASSERT_EQ(d.status, coopdyn::ProjectionStatus::ok);
+        const MatrixXd M_inverse = s.M.inverse();
+        const MatrixXd literal = MatrixXd::Identity(s.joints, s.joints) -
+                                 s.J.transpose() * (s.J * M_inverse * s.J.transpose()).inverse() * s.J * M_inverse;
+        for (const double scale : {1.0, 100.0}) {
+            const VectorXd tau = scale * random_vector(s.joints, rng);
+            VectorXd projected(s.joints);
+            d.self_motion_projection(tau, projected);
+            worst = std::max(worst, relative(projected, literal * tau));
+            // It moves no contact point: J M^-1 N^T tau = 0.
+            worst_motion = std::max(worst_motion, (s.J * M_inverse * projected).norm() / (M_inverse * tau).norm());
+        }
+    }
+    std::printf("N^T tau against the printed projector: %.1e; J M^-1 N^T tau %.1e\n", worst, worst_motion);
+    EXPECT_LT(worst, 1e-11);
+    EXPECT_LT(worst_motion, 1e-14);
+}
+
 TEST(ProjectedDynamics, FixedSizesAgreeWithDynamicAndAllocateNothing)
 {
     Rng rng(6);
@@ -298,24 +326,3 @@ template class coopdyn::ProjectedDynamics<double, 3, 22>;
 template class coopdyn::ProjectedDynamics<float, 2, 15>;
 template class coopdyn::ProjectedDynamics<double, coopdyn::Dynamic, coopdyn::Dynamic>;
 
-namespace {
-
-TEST(ProjectedDynamicsKernels, RowSolveAgainstALowerTriangleIsXTimesLInverseTransposed)
-{
-    // detail::solve_rows_transposed_lower (the controller's J L^-T) against the explicit product
-    // X (L^-1)^T with L^-1 from Eigen's triangular solve of the identity, and Y L^T = X.
-    Rng rng(41);
-    for (const Index n : {1, 6, 14, 21}) {
-        for (const Index m : {1, 12, 18}) {
-            const MatrixXd L = coopdyn_test::random_spd(n, rng).llt().matrixL();
-            const MatrixXd X = coopdyn_test::random_matrix(m, n, rng);
-            MatrixXd Y = X;
-            coopdyn::detail::solve_rows_transposed_lower(L, Y);
-            const MatrixXd L_inverse = L.triangularView<Eigen::Lower>().solve(MatrixXd::Identity(n, n));
-            EXPECT_LT(relative(Y, X * L_inverse.transpose()), 1e-13) << "n = " << n << ", m = " << m;
-            EXPECT_LT(relative(Y * L.transpose(), X), 1e-14) << "n = " << n << ", m = " << m;
-        }
-    }
-}
-
-}  // namespace

@@ -121,10 +121,7 @@ struct ControllerData {
 
     // ---- workspace -----------------------------------------------------------------------------
     Eigen::Matrix<Scalar, Stack, Internal> internal_basis;  ///< B = blkdiag(R_o, ..., R_o) B_body
-    detail::Llt<JointMatrix> inertia_factor;               ///< M = L L^T
-    Eigen::Matrix<Scalar, Stack, Joints> whitened_jacobian;  ///< J L^-T
-    Eigen::Matrix<Scalar, Stack, Stack> contact_gram;      ///< J M^-1 J^T
-    detail::Llt<Eigen::Matrix<Scalar, Stack, Stack>> contact_gram_factor;
+    detail::Llt<JointMatrix> inertia_factor;               ///< M = L L^T: the input check that M is SPD
     Eigen::Matrix<Scalar, Joints, Internal> jacobian_basis;  ///< J^T B
     InternalMatrix hessian;
     InternalVector gradient;
@@ -137,7 +134,6 @@ struct ControllerData {
     Eigen::Matrix<Scalar, plus_one(Rows), 1> fallback_bounds;
     QpSolver<Scalar, plus_one(Internal), plus_one(Rows)> fallback_qp;
     JointVector joint_scratch;
-    StackVector stack_scratch;
     bool warm = false;  ///< the QP solved last tick (its active set starts this one)
 };
 
@@ -162,9 +158,6 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       dynamics(model.arms(), model.joints()),
       internal_basis(model.body_internal_basis()),
       inertia_factor(model.joints()),
-      whitened_jacobian(Eigen::Matrix<Scalar, Stack, Joints>::Zero(6 * model.arms(), model.joints())),
-      contact_gram(Eigen::Matrix<Scalar, Stack, Stack>::Zero(6 * model.arms(), 6 * model.arms())),
-      contact_gram_factor(6 * model.arms()),
       jacobian_basis(Eigen::Matrix<Scalar, Joints, Internal>::Zero(model.joints(), 6 * (model.arms() - 1))),
       hessian(InternalMatrix::Zero(6 * (model.arms() - 1), 6 * (model.arms() - 1))),
       gradient(InternalVector::Zero(6 * (model.arms() - 1))),
@@ -178,8 +171,7 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
           Eigen::Matrix<Scalar, plus_one(Rows), plus_one(Internal)>::Zero(model.rows() + 1, 6 * model.arms() - 5)),
       fallback_bounds(Eigen::Matrix<Scalar, plus_one(Rows), 1>::Zero(model.rows() + 1)),
       fallback_qp(6 * model.arms() - 5, model.rows() + 1),
-      joint_scratch(JointVector::Zero(model.joints())),
-      stack_scratch(StackVector::Zero(6 * model.arms()))
+      joint_scratch(JointVector::Zero(model.joints()))
 {
     dynamics.form_constrained_inertia = false;
     if (model.qp_options().iteration_limit > 0) {
@@ -365,30 +357,16 @@ template <typename Model, typename Data> void controller_contact_outputs(const M
 /// projector N^T = I - J^T (J M^-1 J^T)^-1 J M^-1: J M^-1 tau_n = 0, so tau_n accelerates no
 /// contact point; since [Jx; Jc] and J have the same row space, it moves neither the object nor
 /// the grasp and leaves every contact wrench as it is. The h term compensates the self-motion's
-/// own gravity and Coriolis forces, which tau_u and tau_c do not reach. False if J M^-1 J^T is
-/// singular. Needs data.inertia_factor.
+/// own gravity and Coriolis forces, which tau_u and tau_c do not reach. N^T comes from the
+/// projection's own factors (ProjectedDynamics::self_motion_projection), never J M^-1 J^T.
 template <typename Model, typename Data, typename Input>
-bool controller_posture(const Model& model, Data& data, const Input& input) noexcept
+void controller_posture(const Model& model, Data& data, const Input& input) noexcept
 {
-    auto& tau_n = data.posture_torque;
-    tau_n = input.bias;
-    tau_n.array() -= model.posture_stiffness().array() * (input.positions - input.posture).array() +
+    auto& tau_0 = data.joint_scratch;
+    tau_0 = input.bias;
+    tau_0.array() -= model.posture_stiffness().array() * (input.positions - input.posture).array() +
                      model.posture_damping().array() * input.velocities.array();
-    // J M^-1 J^T = W W^T, W = J L^-T, all rows of J solved at once, and coefficient-based: Eigen's
-    // blocked triangular solve and GEMM cost more than the arithmetic at these sizes.
-    data.whitened_jacobian = input.jacobian;
-    solve_rows_transposed_lower(data.inertia_factor.matrixLLT(), data.whitened_jacobian);
-    data.contact_gram.noalias() = data.whitened_jacobian.lazyProduct(data.whitened_jacobian.transpose());
-    data.contact_gram_factor.compute(data.contact_gram);
-    if (!regular_cholesky(data.contact_gram_factor)) {
-        return false;
-    }
-    data.joint_scratch = tau_n;
-    data.inertia_factor.solveInPlace(data.joint_scratch);  // M^-1 tau_0
-    data.stack_scratch.noalias() = input.jacobian.lazyProduct(data.joint_scratch);
-    data.contact_gram_factor.solveInPlace(data.stack_scratch);
-    tau_n.noalias() -= input.jacobian.transpose().lazyProduct(data.stack_scratch);
-    return true;
+    data.dynamics.self_motion_projection(tau_0, data.posture_torque);
 }
 
 /// Every output set for a tick that computes no control: `torque` (zero or h), nothing else.
@@ -450,10 +428,7 @@ controller_tick(const ControllerModel<Scalar, Arms, Joints, Edges>& model, Contr
     detail::controller_contact_qp(model, data, input);
     detail::controller_solve_squeeze(model, data);
     detail::controller_contact_outputs(model, data);
-    if (!detail::controller_posture(model, data, input)) {
-        detail::controller_no_control(data, ControlStatus::singular, input.bias);
-        return data.torque;
-    }
+    detail::controller_posture(model, data, input);
     data.torque = data.motion_torque + data.squeeze_torque + data.posture_torque;
     return data.torque;
 }

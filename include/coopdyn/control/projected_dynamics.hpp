@@ -148,22 +148,6 @@ template <typename Factor> bool regular_cholesky(const Factor& factor) noexcept
     return regular_pivots(factor.matrixLLT().diagonal().cwiseAbs2());
 }
 
-/// X <- X L^-T for a lower-triangular L (n x n, read from its lower triangle) and X (m x n):
-/// column i of the result is (x_i - sum_{k<i} L_ik y_k) / L_ii. The m right-hand sides are
-/// solved together, so every step is a contiguous m-vector axpy (column-major X); solving the
-/// columns of X^T one by one would walk m serial substitution chains instead.
-template <typename DerivedL, typename DerivedX>
-void solve_rows_transposed_lower(const Eigen::MatrixBase<DerivedL>& L, const Eigen::MatrixBase<DerivedX>& X_out) noexcept
-{
-    auto& X = const_cast<Eigen::MatrixBase<DerivedX>&>(X_out);
-    for (Index i = 0; i < X.cols(); ++i) {
-        for (Index k = 0; k < i; ++k) {
-            X.col(i) -= L(i, k) * X.col(k);
-        }
-        X.col(i) /= L(i, i);
-    }
-}
-
 /// Householder QR of A (rows >= cols) in place: A becomes R (upper triangle; zeros below),
 /// reflector k is H_k = I - tau_k v_k v_k^T with v_k stored full-length in reflectors.col(k)
 /// (zeros above row k, 1 at row k), so that A_in = H_0 ... H_{cols-1} [R; 0]. The convention is
@@ -431,6 +415,31 @@ public:
             out.template segment<6>(6 * i) -= solved.at_point(contact_offsets.col(i)).vector();  // G_i^T
         }
     }
+    /// tau -> N^T tau = tau - J^T (J M^-1 J^T)^-1 J M^-1 tau (Q, into out; out must not be tau): the
+    /// dynamically consistent projection onto the torques that move only the arms' self-motion
+    /// null(J) (errata E12's posture torque), without forming or factorising J M^-1 J^T. null(J)
+    /// is spanned by V = Q2 L22^-T U, U (free x (free - 6)) an orthonormal basis of null(E^T):
+    /// J = G^T Jx + B Jr, Jr Q2 = 0 and Jx Q2 L22^-T = E^T. Then V^T M V = U^T U = I, so
+    /// N^T = M V (V^T M V)^-1 V^T = M V V^T, and U U^T = I - E Lambda_c E^T:
+    ///
+    ///     N^T tau = (Q2^T M)^T L22^-T (I - E Lambda_c E^T) L22^-1 Q2^T tau.
+    ///
+    /// Needs status ok (then J has full row rank: rank J = rank Jr + rank(Jx Q2)).
+    template <typename DerivedIn, typename DerivedOut>
+    void self_motion_projection(const Eigen::MatrixBase<DerivedIn>& tau, const Eigen::MatrixBase<DerivedOut>& out_) const noexcept
+    {
+        auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
+        COOPDYN_ASSERT(status == ProjectionStatus::ok, "self_motion_projection needs a regular projection");
+        auto& reduced = free_scratch_;
+        reduced.noalias() = reduced_q_.template rightCols<Free>(free_joints()).transpose().lazyProduct(tau);  // Q2^T
+        free_inertia_factor_.solve_lower_in_place(reduced);                                          // L22^-1
+        task_scratch_.noalias() = task_reduced_.transpose().lazyProduct(reduced);                    // E^T
+        const Vector6<Scalar> task_part = task_inertia.lazyProduct(task_scratch_);                   // Lambda_c
+        reduced.noalias() -= task_reduced_.lazyProduct(task_part);                                   // I - E Lambda_c E^T
+        free_inertia_factor_.solve_upper_in_place(reduced);                                          // L22^-T
+        out.noalias() = free_rows_inertia_.transpose().lazyProduct(reduced);                         // M Q2
+    }
+
     /// x -> Mc^-1 x (Q, into out; out may be x itself). With v = [Q1 Q2]^T x (see the class
     /// comment): Mc^-1 x = Q1 v1 + Q2 M22^-1 (v2 - Q2^T M Q1 v1).
     template <typename DerivedIn, typename DerivedOut>
@@ -511,6 +520,8 @@ private:
     Eigen::Matrix<Scalar, 1, Joints> reduced_workspace_;
     mutable JointVector solve_scratch_;
     mutable JointVector solve_internal_;
+    mutable Eigen::Matrix<Scalar, Free, 1> free_scratch_;
+    mutable Vector6<Scalar> task_scratch_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -550,7 +561,9 @@ ProjectedDynamics<Scalar, Arms, Joints>::ProjectedDynamics(Index arms, Index joi
       joint_scratch_(JointVector::Zero(joints)),
       reduced_workspace_(Eigen::Matrix<Scalar, 1, Joints>::Zero(1, joints)),
       solve_scratch_(JointVector::Zero(joints)),
-      solve_internal_(JointVector::Zero(joints))
+      solve_internal_(JointVector::Zero(joints)),
+      free_scratch_(Eigen::Matrix<Scalar, Free, 1>::Zero(std::max<Index>(joints - 6 * (arms - 1), 0))),
+      task_scratch_(Vector6<Scalar>::Zero())
 {
     COOPDYN_ASSERT(arms >= 2, "projected dynamics need at least two arms");
     COOPDYN_ASSERT(Arms == Eigen::Dynamic || arms == Arms, "arms must equal the fixed K");
