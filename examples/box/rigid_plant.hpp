@@ -31,6 +31,7 @@
 
 #include <coopdyn/dynamics/interaction_wrenches.hpp>
 #include <coopdyn/dynamics/udwadia_kalaba.hpp>
+#include <coopdyn/detail/fixed_cholesky.hpp>
 #include <coopdyn/spatial/inertia.hpp>
 #include <coopdyn/spatial/quaternion.hpp>
 #include <coopdyn/spatial/skew.hpp>
@@ -97,92 +98,6 @@ inline BoxInertia box_inertia(const DualArmBoxModel& world, double mass)
     box.inertia = (mass / model->body_mass[body]) * axes * moments.asDiagonal() * axes.transpose();
     return box;
 }
-
-// Complete unrolling of the small fixed-trip-count loops below (their inner bounds depend on the
-// outer index, which compilers do not always unroll on their own).
-#if defined(__clang__)
-#define BOX_EXAMPLE_UNROLL _Pragma("unroll")
-#elif defined(__GNUC__)
-#define BOX_EXAMPLE_UNROLL _Pragma("GCC unroll 8")
-#else
-#define BOX_EXAMPLE_UNROLL
-#endif
-
-/// A = L D L^T of a small symmetric positive definite matrix (L unit lower triangular, D the
-/// pivots), written out for the compiler to unroll: Eigen's LLT runs a generic algorithm with
-/// run-time loops, which costs more than the arithmetic at 6x6 and 7x7. L D L^T rather than
-/// L L^T for the reason coopdyn::detail::FixedCholesky gives (no square root on the serial chain
-/// of pivots); unlike FixedCholesky it exposes the pivots (the weld solve's rank test) and solves
-/// many right-hand sides at once. Only the lower triangle of the input is read. Always inlined:
-/// the weld solve calls it for both arms in turn, and inlined the two calls' chains overlap.
-template <int Size> class SmallLdlt {
-public:
-    /// Right-hand sides side by side, row-major: each step of the substitutions then updates a
-    /// whole row, which vectorises across the right-hand sides.
-    template <int Columns> using RowMajorBlock = Eigen::Matrix<double, Size, Columns, Eigen::RowMajor>;
-
-    /// Factorises; false when a pivot is not positive (not positive definite, or NaN).
-    template <typename Derived> COOPDYN_INLINE bool compute(const Eigen::MatrixBase<Derived>& matrix) noexcept
-    {
-        // d_j = a_jj - sum_k l_jk^2 d_k, l_ij = (a_ij - sum_k l_ik l_jk d_k) / d_j (Golub and Van
-        // Loan, Matrix Computations, 4.1.2), with scaled_(i, k) = l_ik d_k kept alongside.
-        bool positive_definite = true;
-        BOX_EXAMPLE_UNROLL
-        for (int column = 0; column < Size; ++column) {
-            double pivot = matrix(column, column);
-            BOX_EXAMPLE_UNROLL
-            for (int k = 0; k < column; ++k) {
-                pivot -= lower_(column, k) * scaled_(column, k);
-            }
-            positive_definite = positive_definite && pivot > 0.0;
-            pivot_(column) = pivot;
-            const double inverse_pivot = 1.0 / pivot;
-            inverse_pivot_(column) = inverse_pivot;
-            BOX_EXAMPLE_UNROLL
-            for (int row = column + 1; row < Size; ++row) {
-                double value = matrix(row, column);
-                BOX_EXAMPLE_UNROLL
-                for (int k = 0; k < column; ++k) {
-                    value -= lower_(row, k) * scaled_(column, k);
-                }
-                scaled_(row, column) = value;
-                lower_(row, column) = value * inverse_pivot;
-            }
-        }
-        return positive_definite;
-    }
-
-    /// The pivots d_j (the squares of L L^T's diagonal).
-    const Eigen::Matrix<double, Size, 1>& pivots() const noexcept { return pivot_; }
-
-    /// B := A^-1 B: L Y = B, then L^T X = D^-1 Y, row by row.
-    template <int Columns> COOPDYN_INLINE void solve_in_place(RowMajorBlock<Columns>& block) const noexcept
-    {
-        BOX_EXAMPLE_UNROLL
-        for (int row = 1; row < Size; ++row) {
-            BOX_EXAMPLE_UNROLL
-            for (int k = 0; k < row; ++k) {
-                block.row(row) -= lower_(row, k) * block.row(k);
-            }
-        }
-        BOX_EXAMPLE_UNROLL
-        for (int row = Size - 1; row >= 0; --row) {
-            block.row(row) *= inverse_pivot_(row);
-            BOX_EXAMPLE_UNROLL
-            for (int k = row + 1; k < Size; ++k) {
-                block.row(row) -= lower_(k, row) * block.row(k);
-            }
-        }
-    }
-
-private:
-    // Only the strictly lower parts are written and read; uninitialised on purpose.
-    Eigen::Matrix<double, Size, Size> lower_;   // l_ij, i > j
-    Eigen::Matrix<double, Size, Size> scaled_;  // l_ij d_j, i > j
-    Eigen::Matrix<double, Size, 1> pivot_, inverse_pivot_;
-};
-
-#undef BOX_EXAMPLE_UNROLL
 
 class RigidGraspPlant {
 public:
@@ -463,12 +378,14 @@ private:
                           const JointVector& tau, const Vector6d& box_wrench, RigidGraspSolution& out) const
     {
         using Matrix6d = Eigen::Matrix<double, 6, 6>;
-        // One padding column: whole rows of 8 fill the vector registers.
+        // The right-hand sides side by side, row-major: FixedCholesky::solve_in_place then updates
+        // a whole row per step, vectorised across them. One padding column: whole rows of 8 fill
+        // the vector registers.
         constexpr int columns = 8, free_column = 6;
-        std::array<SmallLdlt<arm_joints>, palms> arm_factor;
-        std::array<SmallLdlt<arm_joints>::RowMajorBlock<columns>, palms> joint_solution;  // [X_i, qdd0_i, 0]
-        std::array<SmallLdlt<6>, palms> mobility_factor;
-        std::array<SmallLdlt<6>::RowMajorBlock<columns>, palms> palm_solution;  // [Lambda_i, hSigma_i - Lambda_i beta_i, 0]
+        std::array<coopdyn::detail::FixedCholesky<double, arm_joints>, palms> arm_factor;
+        std::array<Eigen::Matrix<double, arm_joints, columns, Eigen::RowMajor>, palms> joint_solution;  // [X_i, qdd0_i, 0]
+        std::array<coopdyn::detail::FixedCholesky<double, 6>, palms> mobility_factor;
+        std::array<Eigen::Matrix<double, 6, columns, Eigen::RowMajor>, palms> palm_solution;  // [Lambda_i, hSigma_i - Lambda_i beta_i, 0]
         for (std::size_t i = 0; i < palms; ++i) {
             if (!arm_factor[i].compute(terms[i].inertia)) {
                 return false;

@@ -39,7 +39,12 @@ public:
 
     /// Factorise the lower triangle of `matrix`. Returns false when a pivot is not positive
     /// (matrix not positive definite, or NaN); the factor is then unusable.
-    template <typename Derived> bool compute(const Eigen::MatrixBase<Derived>& matrix) noexcept
+    ///
+    /// Always inlined, like solve_in_place(): a caller that factorises several independent
+    /// matrices in turn (the rigid plant's two arms) gets their serial pivot chains interleaved
+    /// only when both calls are inlined into it, and an out-of-line call would also have to
+    /// store and reload the factor through memory.
+    template <typename Derived> COOPDYN_INLINE bool compute(const Eigen::MatrixBase<Derived>& matrix) noexcept
     {
         // Column by column: d_j = a_jj - sum_k l_jk^2 d_k, l_ij = (a_ij - sum_k l_ik l_jk d_k) / d_j.
         // scaled_(i, k) = l_ik d_k is kept alongside l_ik so that each update is one product.
@@ -54,6 +59,7 @@ public:
             // No early return: every entry is written on every path (so nothing needs zeroing),
             // and the result of an indefinite matrix is reported, not used.
             positive_definite = positive_definite && pivot > Scalar(0);
+            pivots_(column) = pivot;
             inverse_diagonal_(column) = Scalar(1) / pivot;
             COOPDYN_DETAIL_UNROLL
             for (int row = column + 1; row < Size; ++row) {
@@ -69,29 +75,43 @@ public:
         return positive_definite;
     }
 
-    /// Solve A x = rhs with the stored factor: L y = rhs, then L^T x = D^-1 y.
+    /// The pivots d_j of the last compute() (D's diagonal; the squares of L L^T's diagonal). Their
+    /// smallest, relative to the matrix's diagonal, tells how close to singular the matrix is.
+    const Vector& pivots() const noexcept { return pivots_; }
+
+    /// Solve A x = rhs with the stored factor (solve_in_place on a copy of rhs).
     template <typename Derived> Vector solve(const Eigen::MatrixBase<Derived>& rhs) const noexcept
     {
-        Vector solution;
+        Vector solution = rhs;
+        solve_in_place(solution);
+        return solution;
+    }
+
+    /// X <- A^-1 X for Size-row X with any number of columns: L Y = X, then L^T X = D^-1 Y, a
+    /// whole row of X per step. With a row-major X each step is then one multiply-add across
+    /// all right-hand sides, which vectorises; a vector X gets the scalar substitution.
+    template <typename Derived> COOPDYN_INLINE void solve_in_place(const Eigen::MatrixBase<Derived>& X_out) const noexcept
+    {
+        static_assert(Derived::RowsAtCompileTime == Size || Derived::RowsAtCompileTime == Eigen::Dynamic,
+                      "FixedCholesky::solve_in_place: X must have Size rows");
+        // Eigen's idiom for writing through an expression argument (a block, a map).
+        auto& X = const_cast<Eigen::MatrixBase<Derived>&>(X_out);
+        COOPDYN_ASSERT(X.rows() == Size, "FixedCholesky::solve_in_place: X must have Size rows");
         COOPDYN_DETAIL_UNROLL
-        for (int row = 0; row < Size; ++row) {
-            Scalar value = rhs(row);
+        for (int row = 1; row < Size; ++row) {
             COOPDYN_DETAIL_UNROLL
             for (int k = 0; k < row; ++k) {
-                value -= lower_(row, k) * solution(k);
+                X.row(row) -= lower_(row, k) * X.row(k);
             }
-            solution(row) = value;
         }
         COOPDYN_DETAIL_UNROLL
         for (int row = Size - 1; row >= 0; --row) {
-            Scalar value = solution(row) * inverse_diagonal_(row);
+            X.row(row) *= inverse_diagonal_(row);
             COOPDYN_DETAIL_UNROLL
             for (int k = row + 1; k < Size; ++k) {
-                value -= lower_(k, row) * solution(k);
+                X.row(row) -= lower_(k, row) * X.row(k);
             }
-            solution(row) = value;
         }
-        return solution;
     }
 
 private:
@@ -99,6 +119,7 @@ private:
     // them costs stores on every tick and buys nothing).
     Matrix lower_;             // l_ij, i > j (unit diagonal implied)
     Matrix scaled_;            // l_ij d_j, i > j
+    Vector pivots_;            // d_j
     Vector inverse_diagonal_;  // 1 / d_j
 };
 
