@@ -230,7 +230,7 @@ TEST(ProjectedDynamics, SingularArmsAreAStatusNotANan)
 // The controller's path: the basis of the body-frame offsets p, built once, rotated into {w}
 // (B = blkdiag(R, ..., R) B(p), r = R p) instead of a Householder QR of r's closed-form basis each
 // tick. It is another basis of the same null(G), so every projection must agree with compute()'s;
-// and without Mc formed, nothing else changes.
+// and without P and Mc formed, nothing else changes (P x by project() agrees with P).
 TEST(ProjectedDynamics, ABasisRotatedFromTheBodyFrameGivesTheSameProjection)
 {
     Rng rng(7);
@@ -248,19 +248,24 @@ TEST(ProjectedDynamics, ABasisRotatedFromTheBodyFrameGivesTheSameProjection)
         const VectorXd jdot_qdot = s.Jdot * s.qdot;
         Dynamics reference(c.arms, s.joints), rotated(c.arms, s.joints);
         reference.compute(s.M, s.h, s.J, jdot_qdot, s.qdot, s.r);
-        rotated.form_constrained_inertia = false;
+        rotated.form_projection_matrices = false;
         const auto counts = allocation_counter::count_allocations(
             [&] { rotated.compute_with_basis(s.M, s.h, s.J, jdot_qdot, s.qdot, s.r, basis); });
         EXPECT_EQ(counts.operator_new + counts.eigen, 0);
         EXPECT_GT((rotated.internal_basis - reference.internal_basis).norm(), 1e-3) << "a different basis";
         const MatrixXd null_projector = basis * basis.transpose();
         worst = std::max({worst, relative(null_projector, reference.internal_basis * reference.internal_basis.transpose()),
-                          relative(rotated.projector, reference.projector),
                           relative(rotated.object_jacobian, reference.object_jacobian),
                           relative(rotated.task_inertia, reference.task_inertia),
                           relative(rotated.task_bias, reference.task_bias),
                           relative(rotated.projector_rate_qdot, reference.projector_rate_qdot)});
         EXPECT_EQ(rotated.constrained_inertia, MatrixXd::Identity(s.joints, s.joints)) << "Mc not formed";
+        EXPECT_EQ(rotated.projector, MatrixXd::Identity(s.joints, s.joints)) << "P not formed";
+        worst = std::max(worst, relative(rotated.reduced_jacobian_transpose, s.J.transpose() * basis));
+        const VectorXd x = random_vector(s.joints, rng);
+        VectorXd projected(s.joints);
+        rotated.project(x, projected);
+        worst = std::max(worst, relative(projected, reference.projector * x));
     }
     std::printf("rotated body-frame basis against compute(): worst relative difference %.1e\n", worst);
     EXPECT_LT(worst, 1e-13);

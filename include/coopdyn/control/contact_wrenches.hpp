@@ -53,7 +53,7 @@ void contact_wrench_bias(const ProjectedDynamics<Scalar, Arms, Joints>& dynamics
     // qdd = Mc^-1 (tau_u + P (Jx^T F_x - h) + Pdot qdot)   (E11: P Jx^T F_x included)
     scratch.noalias() = dynamics.object_jacobian.transpose().lazyProduct(F_x);
     scratch -= h;
-    qdd.noalias() = dynamics.projector.lazyProduct(scratch);
+    dynamics.project(scratch, qdd);
     qdd += tau_u;
     qdd += dynamics.projector_rate_qdot;
     dynamics.constrained_inertia_solve(qdd, qdd);

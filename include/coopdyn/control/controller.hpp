@@ -115,14 +115,14 @@ struct ControllerData {
     JointVector joint_acceleration;
     Eigen::Matrix<Scalar, 3, Arms> contact_offsets;        ///< r_i = R_o p_i, {w}
     Eigen::Matrix<Scalar, 3, times_three(Arms)> contact_rotations;  ///< [R_c1 ... R_cK], {c_i} to {w}
-    /// P, Jx, Lambda_c, hc, B, ... of this tick; the tick does not form Mc
-    /// (dynamics.form_constrained_inertia is false: set it to read dynamics.constrained_inertia).
+    /// Jx, Lambda_c, hc, B, Jr^T, ... of this tick; the tick does not form P and Mc
+    /// (dynamics.form_projection_matrices is false: set it to read dynamics.projector and
+    /// dynamics.constrained_inertia).
     ProjectedDynamics<Scalar, Arms, Joints> dynamics;
 
     // ---- workspace -----------------------------------------------------------------------------
     Eigen::Matrix<Scalar, Stack, Internal> internal_basis;  ///< B = blkdiag(R_o, ..., R_o) B_body
     detail::Llt<JointMatrix> inertia_factor;               ///< M = L L^T: the input check that M is SPD
-    Eigen::Matrix<Scalar, Joints, Internal> jacobian_basis;  ///< J^T B
     InternalMatrix hessian;
     InternalVector gradient;
     Eigen::Matrix<Scalar, Rows, Internal> constraints;    ///< C, constant (ControllerModel::contact_qp_constraints)
@@ -158,7 +158,6 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       dynamics(model.arms(), model.joints()),
       internal_basis(model.body_internal_basis()),
       inertia_factor(model.joints()),
-      jacobian_basis(Eigen::Matrix<Scalar, Joints, Internal>::Zero(model.joints(), 6 * (model.arms() - 1))),
       hessian(InternalMatrix::Zero(6 * (model.arms() - 1), 6 * (model.arms() - 1))),
       gradient(InternalVector::Zero(6 * (model.arms() - 1))),
       constraints(model.contact_qp_constraints()),
@@ -173,7 +172,7 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       fallback_qp(6 * model.arms() - 5, model.rows() + 1),
       joint_scratch(JointVector::Zero(model.joints()))
 {
-    dynamics.form_constrained_inertia = false;
+    dynamics.form_projection_matrices = false;
     if (model.qp_options().iteration_limit > 0) {
         qp.set_iteration_limit(model.qp_options().iteration_limit);
         fallback_qp.set_iteration_limit(model.qp_options().iteration_limit);
@@ -234,7 +233,7 @@ void controller_impedance(const Model& model, Data& data, const Input& input) no
     const Vector6<Scalar> spring_damper = model.damping() * data.twist_error + model.stiffness() * data.pose_error;
     data.motion_wrench = dynamics.task_bias + dynamics.task_inertia * input.desired_acceleration - spring_damper;
     data.joint_scratch.noalias() = dynamics.object_jacobian.transpose().lazyProduct(data.motion_wrench);
-    data.motion_torque.noalias() = dynamics.projector.lazyProduct(data.joint_scratch);
+    dynamics.project(data.joint_scratch, data.motion_torque);
     data.external_wrench = dynamics.task_inertia * (input.object_acceleration - input.desired_acceleration) + spring_damper;
 }
 
@@ -242,16 +241,15 @@ void controller_impedance(const Model& model, Data& data, const Input& input) no
 /// ControllerModel::contact_qp_constraints, set at construction) and the bounds
 /// d = b - A_w w_0,i = b - A_i [R_ci^T f_0,i; R_ci^T t_0,i], and the objective's H and g
 /// (SqueezeObjective; its moment term's B_m^T B_m is constant too, ControllerModel::moment_gram).
-template <typename Model, typename Data, typename Input>
-void controller_contact_qp(const Model& model, Data& data, const Input& input) noexcept
+template <typename Model, typename Data> void controller_contact_qp(const Model& model, Data& data) noexcept
 {
     using Scalar = typename Model::Scalar;
     const auto& basis = data.dynamics.internal_basis;
     const SqueezeObjective<Scalar>& objective = model.objective();
     // Coefficient-based products: at these sizes Eigen's GEMM path costs more in packing than in
     // arithmetic (as in ProjectedDynamics::compute).
-    data.jacobian_basis.noalias() = input.jacobian.transpose().lazyProduct(basis);
-    data.hessian.noalias() = objective.torque_weight * data.jacobian_basis.transpose().lazyProduct(data.jacobian_basis);
+    const auto& jacobian_basis = data.dynamics.reduced_jacobian_transpose;  // J^T B
+    data.hessian.noalias() = objective.torque_weight * jacobian_basis.transpose().lazyProduct(jacobian_basis);
     data.hessian.diagonal().array() += objective.squeeze_weight;
     data.hessian.noalias() += objective.moment_weight * model.moment_gram();
     data.gradient.setZero();
@@ -330,7 +328,7 @@ template <typename Model, typename Data> void controller_solve_squeeze(const Mod
 template <typename Model, typename Data> void controller_contact_outputs(const Model& model, Data& data) noexcept
 {
     using Scalar = typename Model::Scalar;
-    data.squeeze_torque.noalias() = data.jacobian_basis.lazyProduct(data.squeeze);
+    data.squeeze_torque.noalias() = data.dynamics.reduced_jacobian_transpose.lazyProduct(data.squeeze);
     data.contact_wrenches = data.contact_wrench_bias;
     data.contact_wrenches.noalias() += data.dynamics.internal_basis.lazyProduct(data.squeeze);
     data.tightest_margin = std::numeric_limits<Scalar>::infinity();
@@ -425,7 +423,7 @@ controller_tick(const ControllerModel<Scalar, Arms, Joints, Edges>& model, Contr
     detail::controller_impedance(model, data, input);
     contact_wrench_bias(data.dynamics, input.inertia, input.bias, data.motion_torque, data.external_wrench,
                         data.joint_acceleration, data.contact_wrench_bias, data.joint_scratch);
-    detail::controller_contact_qp(model, data, input);
+    detail::controller_contact_qp(model, data);
     detail::controller_solve_squeeze(model, data);
     detail::controller_contact_outputs(model, data);
     detail::controller_posture(model, data, input);

@@ -389,10 +389,22 @@ public:
         return evaluate(M, h, J, Jdot_qdot, qdot, r);
     }
 
-    /// Whether compute() forms Mc (constrained_inertia). The solves never read it (they use its
-    /// block form, constrained_inertia_solve); it is an output for the user. The controller turns
-    /// it off: forming the 14 x 14 Mc of two 7-joint arms costs about 5 % of its tick.
-    bool form_constrained_inertia = true;
+    /// Whether compute() forms the Q x Q matrices P (projector) and Mc (constrained_inertia). The
+    /// computations never read them (they apply P as x - Q1 Q1^T x, project(), and Mc through
+    /// its block form, constrained_inertia_solve); they are outputs for the user. The controller
+    /// turns them off: forming them for two 7-joint arms costs about 10 % of its tick.
+    bool form_projection_matrices = true;
+
+    /// x -> P x = x - Q1 (Q1^T x) (Q, into out; out may be x itself), L(4) without forming P.
+    template <typename DerivedIn, typename DerivedOut>
+    void project(const Eigen::MatrixBase<DerivedIn>& x, const Eigen::MatrixBase<DerivedOut>& out_) const noexcept
+    {
+        auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
+        const auto q1 = reduced_q_.template leftCols<Internal>(reduced_.size());
+        reduced_.noalias() = q1.transpose().lazyProduct(x);
+        out = x;
+        out.noalias() -= q1.lazyProduct(reduced_);
+    }
 
     /// x -> Jc^+ x (6K -> Q), the minimum-norm solution of Jc y = N x.
     template <typename DerivedIn, typename DerivedOut>
@@ -466,8 +478,10 @@ public:
     Eigen::Matrix<Scalar, 6, Joints> object_jacobian;       ///< Jx, 6 x Q
     Eigen::Matrix<Scalar, Stack, Joints> constraint_jacobian;  ///< Jc, 6K x Q, L(13)
     Eigen::Matrix<Scalar, Stack, Internal> internal_basis;  ///< B, 6K x 6(K-1), orthonormal, G B = 0
-    JointMatrix projector;                                  ///< P, L(4)
-    JointMatrix constrained_inertia;                        ///< Mc = P M + I - P, L(26)
+    /// Jr^T = J^T B (Q x 6(K-1)): the torques of the internal wrenches, tau_c = Jr^T z for w = B z
+    Eigen::Matrix<Scalar, Joints, Internal> reduced_jacobian_transpose;
+    JointMatrix projector;                                  ///< P, L(4) (formed when form_projection_matrices)
+    JointMatrix constrained_inertia;                        ///< Mc = P M + I - P, L(26) (when form_projection_matrices)
     Matrix6<Scalar> task_inertia;                           ///< Lambda_c, L(15)
     Vector6<Scalar> task_bias;                              ///< hc, L(15)
     Vector6<Scalar> object_twist;                           ///< Jx qdot
@@ -496,7 +510,7 @@ private:
     auto reduced_r() const noexcept
     {
         const Index internal = 6 * (arms() - 1);
-        return reduced_jacobian_transpose_.template topLeftCorner<Internal, Internal>(internal, internal);
+        return reduced_factor_.template topLeftCorner<Internal, Internal>(internal, internal);
     }
 
     SpatialInertia<Scalar> grasp_gram_;  // G G^T
@@ -504,7 +518,7 @@ private:
     Basis basis_reflectors_;
     Eigen::Matrix<Scalar, Internal, 1> basis_tau_;
     Eigen::Matrix<Scalar, 1, Internal> basis_workspace_;
-    ReducedJacobianTranspose reduced_jacobian_transpose_;  // Jr^T = J^T B, then R of Jr^T = Q1 R
+    ReducedJacobianTranspose reduced_factor_;  // Jr^T, then R of Jr^T = Q1 R in its upper triangle
     ReducedJacobianTranspose reduced_reflectors_;
     Eigen::Matrix<Scalar, Internal, 1> reduced_tau_;
     JointMatrix reduced_q_;        // [Q1 Q2]
@@ -533,6 +547,7 @@ ProjectedDynamics<Scalar, Arms, Joints>::ProjectedDynamics(Index arms, Index joi
       object_jacobian(Eigen::Matrix<Scalar, 6, Joints>::Zero(6, joints)),
       constraint_jacobian(Eigen::Matrix<Scalar, Stack, Joints>::Zero(6 * arms, joints)),
       internal_basis(Basis::Zero(6 * arms, 6 * (arms - 1))),
+      reduced_jacobian_transpose(Eigen::Matrix<Scalar, Joints, Internal>::Zero(joints, 6 * (arms - 1))),
       projector(JointMatrix::Identity(joints, joints)),
       constrained_inertia(JointMatrix::Identity(joints, joints)),
       task_inertia(Matrix6<Scalar>::Identity()),
@@ -545,7 +560,7 @@ ProjectedDynamics<Scalar, Arms, Joints>::ProjectedDynamics(Index arms, Index joi
       basis_reflectors_(Basis::Zero(6 * arms, 6 * (arms - 1))),
       basis_tau_(Eigen::Matrix<Scalar, Internal, 1>::Zero(6 * (arms - 1))),
       basis_workspace_(Eigen::Matrix<Scalar, 1, Internal>::Zero(1, 6 * (arms - 1))),
-      reduced_jacobian_transpose_(ReducedJacobianTranspose::Zero(joints, 6 * (arms - 1))),
+      reduced_factor_(ReducedJacobianTranspose::Zero(joints, 6 * (arms - 1))),
       reduced_reflectors_(ReducedJacobianTranspose::Zero(joints, 6 * (arms - 1))),
       reduced_tau_(Eigen::Matrix<Scalar, Internal, 1>::Zero(6 * (arms - 1))),
       reduced_q_(JointMatrix::Identity(joints, joints)),
@@ -620,27 +635,31 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::evaluate(
         return status;
     }
     const Index free = joints - internal;
-    reduced_jacobian_transpose_.noalias() = J.transpose().lazyProduct(internal_basis);
-    detail::householder_qr_in_place(reduced_jacobian_transpose_, reduced_reflectors_, reduced_tau_);
-    if (!detail::regular_pivots(reduced_jacobian_transpose_.diagonal().cwiseAbs2())) {
+    reduced_jacobian_transpose.noalias() = J.transpose().lazyProduct(internal_basis);
+    reduced_factor_ = reduced_jacobian_transpose;
+    detail::householder_qr_in_place(reduced_factor_, reduced_reflectors_, reduced_tau_);
+    if (!detail::regular_pivots(reduced_factor_.diagonal().cwiseAbs2())) {
         status = ProjectionStatus::singular_constraint;
         return status;
     }
     detail::householder_q(reduced_reflectors_, reduced_tau_, reduced_q_, reduced_workspace_);
     const auto q1 = reduced_q_.template leftCols<Internal>(internal);
     const auto q2 = reduced_q_.template rightCols<Free>(free);
-    // P = I - Q1 Q1^T = Q2 Q2^T, from the thinner of the two. Coefficient-based products
-    // throughout: at these sizes Eigen's GEMM path costs more in packing than in arithmetic.
-    if (free < internal) {
-        projector.noalias() = q2.lazyProduct(q2.transpose());
-    } else {
-        projector.setIdentity();
-        projector.noalias() -= q1.lazyProduct(q1.transpose());
+    // P = I - Q1 Q1^T = Q2 Q2^T, from the thinner of the two (an output only). Coefficient-based
+    // products throughout: at these sizes Eigen's GEMM path costs more in packing than in
+    // arithmetic.
+    if (form_projection_matrices) {
+        if (free < internal) {
+            projector.noalias() = q2.lazyProduct(q2.transpose());
+        } else {
+            projector.setIdentity();
+            projector.noalias() -= q1.lazyProduct(q1.transpose());
+        }
     }
 
     // Mc = P M + I - P = Q2 (Q2^T M) + I - P (L(26)); M22 = (Q2^T M) Q2 (the class comment).
     free_rows_inertia_.noalias() = q2.transpose().lazyProduct(M);
-    if (form_constrained_inertia) {
+    if (form_projection_matrices) {
         constrained_inertia = -projector;
         constrained_inertia.diagonal().array() += Scalar(1);
         constrained_inertia.noalias() += q2.lazyProduct(free_rows_inertia_);
@@ -669,7 +688,7 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::evaluate(
     compute_rates(J, Jdot_qdot, qdot);
 
     // hc = Lambda_c (Jx Mc^-1 (P h - Pdot qdot) - Jxdot qdot) (L(15)).
-    joint_scratch_.noalias() = projector.lazyProduct(h);
+    project(h, joint_scratch_);
     joint_scratch_ -= projector_rate_qdot;
     constrained_inertia_solve(joint_scratch_, joint_scratch_);
     object_twist_rate_ = object_jacobian.lazyProduct(joint_scratch_) - object_jacobian_rate_qdot;
