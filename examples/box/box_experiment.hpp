@@ -102,19 +102,29 @@ inline coopdyn::ContactFriction<double> true_friction(const PlantFriction& plant
 }
 
 /// A friction model's constraint rows, built once for the margins of many wrenches (the true
-/// friction's 64-facet pyramid would cost 128 sines and cosines per margin otherwise).
+/// friction's 64-facet pyramid would cost 128 sines and cosines per margin otherwise), and scaled
+/// once to unit rows: coopdyn::friction_margin's min_k (b_k - a_k^T w) / |a_k| is then
+/// min_k (b_k / |a_k| - (a_k / |a_k|)^T w), without its 71 square roots and divisions per call
+/// (twice a tick). The same value up to rounding (a few ulps of each term; the test
+/// UnitRowsGiveTheLibrarysMargin in test_box_plants.cpp compares the two).
 struct FrictionRows {
     static constexpr int most = coopdyn::friction_rows(coopdyn::max_pyramid_edges);
-    Eigen::Matrix<double, Eigen::Dynamic, 6, 0, most, 6> rows;
-    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, most, 1> bounds;
+    Eigen::Matrix<double, Eigen::Dynamic, 6, 0, most, 6> unit_rows;  ///< a_k / |a_k|
+    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, most, 1> scaled_bounds;  ///< b_k / |a_k|
 
     explicit FrictionRows(const coopdyn::ContactFriction<double>& friction)
-        : rows(coopdyn::friction_rows(friction.pyramid_edges), 6), bounds(coopdyn::friction_rows(friction.pyramid_edges))
+        : unit_rows(coopdyn::friction_rows(friction.pyramid_edges), 6),
+          scaled_bounds(coopdyn::friction_rows(friction.pyramid_edges))
     {
-        coopdyn::contact_frame_friction_rows(friction, rows, bounds);
+        coopdyn::contact_frame_friction_rows(friction, unit_rows, scaled_bounds);
+        for (Eigen::Index k = 0; k < unit_rows.rows(); ++k) {
+            const double norm = unit_rows.row(k).norm();
+            unit_rows.row(k) /= norm;
+            scaled_bounds(k) /= norm;
+        }
     }
-    /// coopdyn::friction_margin of a contact-frame wrench.
-    double margin(const Vector6d& wrench) const noexcept { return coopdyn::friction_margin(rows, bounds, wrench); }
+    /// coopdyn::friction_margin of a contact-frame wrench (to rounding).
+    double margin(const Vector6d& wrench) const noexcept { return (scaled_bounds - unit_rows * wrench).minCoeff(); }
 };
 
 /// The person's force magnitude at time t (the push profile: ramps, holds, releases).

@@ -88,6 +88,29 @@ TEST(BoxArmTerms, JacobianRateTimesVelocityMatchesCentralDifferences)
     RecordProperty("worst_relative_error", std::to_string(worst));
 }
 
+TEST(BoxExperiment, UnitRowsGiveTheLibrarysMargin)
+{
+    // FrictionRows' margin (rows scaled to unit length once) against coopdyn::friction_margin
+    // (each row divided by its norm per call) for the true friction's 64-edge pyramid, on wrenches
+    // inside, near and outside it.
+    const coopdyn::ContactFriction<double> friction = true_friction(PlantFriction{}, 0.03);
+    const FrictionRows rows(friction);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    double worst = 0.0;
+    for (int trial = 0; trial < 1000; ++trial) {
+        Vector6d wrench;
+        for (Eigen::Index k = 0; k < 6; ++k) {
+            wrench(k) = uniform(rng);
+        }
+        wrench.head<2>() *= 10.0;
+        wrench(2) = 20.0 * uniform(rng);  // negative: pulling, outside
+        const double expected = coopdyn::friction_margin(friction, wrench);
+        worst = std::max(worst, std::abs(rows.margin(wrench) - expected) / std::max(1.0, std::abs(expected)));
+    }
+    EXPECT_LT(worst, 1e-14);
+}
+
 TEST(Lwr4Dynamics, SinCosIsTheLibrarysToRounding)
 {
     // The recursion's own sin and cos (lwr4_dynamics.hpp) against std::sin and std::cos: within
