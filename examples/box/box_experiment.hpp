@@ -253,6 +253,13 @@ constexpr double settle_seconds = 0.2;
 
 /// The person's trembling hand (BoxScenario::person_tremor): white noise low-passed at 5 Hz,
 /// scaled to the RMS per axis, reproducible from the seed.
+///
+/// The white noise is standard normal by Marsaglia's polar method on uniforms made of a
+/// mt19937_64 draw's top 53 bits (exactly uniform on the doubles k 2^-53 in [0, 1)), both values
+/// of each accepted pair used. Not std::normal_distribution: libstdc++'s turns each draw into a
+/// double by std::generate_canonical, which evaluates a long-double logarithm per call (about a
+/// quarter of the person's cost in the rigid experiments), and its sequence is the standard
+/// library's choice, so it differed between standard libraries; this one is the same everywhere.
 class Tremor {
 public:
     Tremor(double rms, unsigned long long seed, double period)
@@ -265,14 +272,39 @@ public:
     Eigen::Vector3d next()
     {
         for (Eigen::Index k = 0; k < 3; ++k) {
-            state_(k) += gain_ * (normal_(generator_) - state_(k));
+            state_(k) += gain_ * (standard_normal() - state_(k));
         }
         return scale_ * state_;
     }
 
 private:
+    /// Uniform on [0, 1): the top 53 bits as a double's mantissa, exactly.
+    double uniform() noexcept { return static_cast<double>(generator_() >> 11) * 0x1.0p-53; }
+
+    /// Standard normal: a point uniform in the unit disc (rejection from the square, s = u^2 + v^2
+    /// in (0, 1)) gives the independent pair u, v times sqrt(-2 ln s / s); the second is kept for
+    /// the next call.
+    double standard_normal() noexcept
+    {
+        if (has_spare_) {
+            has_spare_ = false;
+            return spare_;
+        }
+        double u, v, s;
+        do {
+            u = 2.0 * uniform() - 1.0;
+            v = 2.0 * uniform() - 1.0;
+            s = u * u + v * v;
+        } while (s >= 1.0 || s == 0.0);
+        const double factor = std::sqrt(-2.0 * std::log(s) / s);
+        spare_ = v * factor;
+        has_spare_ = true;
+        return u * factor;
+    }
+
     std::mt19937_64 generator_;
-    std::normal_distribution<double> normal_{0.0, 1.0};
+    double spare_ = 0.0;
+    bool has_spare_ = false;
     double gain_;
     double scale_;
     Eigen::Vector3d state_ = Eigen::Vector3d::Zero();

@@ -111,6 +111,30 @@ TEST(BoxExperiment, UnitRowsGiveTheLibrarysMargin)
     EXPECT_LT(worst, 1e-14);
 }
 
+TEST(BoxExperiment, TremorIsLowPassedNormalNoiseOfTheGivenRms)
+{
+    // The tremor's samples: zero mean and the requested RMS per axis (the low-pass of standard
+    // normal noise scaled by sqrt((2 - gain) / gain)), and the same sequence from the same seed.
+    constexpr double rms = 2.0;
+    Tremor tremor(rms, 5, controller_period), same_seed(rms, 5, controller_period);
+    constexpr int samples = 400000;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero(), sum_of_squares = Eigen::Vector3d::Zero();
+    for (int k = 0; k < samples; ++k) {
+        const Eigen::Vector3d value = tremor.next();
+        ASSERT_EQ(value, same_seed.next());
+        sum += value;
+        sum_of_squares += value.cwiseProduct(value);
+    }
+    const Eigen::Vector3d mean = sum / samples;
+    const Eigen::Vector3d measured_rms = (sum_of_squares / samples - mean.cwiseProduct(mean)).cwiseSqrt();
+    std::printf("tremor: mean (%.3f, %.3f, %.3f), rms (%.3f, %.3f, %.3f), requested %.1f\n", mean(0), mean(1), mean(2),
+                measured_rms(0), measured_rms(1), measured_rms(2), rms);
+    // 400 s of noise correlated over ~1/(2 pi 5 Hz): about 12 000 independent samples, so the
+    // mean's standard error is ~0.02 and the RMS's ~1 %.
+    EXPECT_LT(mean.cwiseAbs().maxCoeff(), 0.1);
+    EXPECT_LT((measured_rms.array() / rms - 1.0).abs().maxCoeff(), 0.05);
+}
+
 TEST(Lwr4Dynamics, SinCosIsTheLibrarysToRounding)
 {
     // The recursion's own sin and cos (lwr4_dynamics.hpp) against std::sin and std::cos: within
