@@ -384,24 +384,30 @@ inline double saturate(JointVector& tau, const JointVector& limit) noexcept
     return use;
 }
 
+/// The palms' frames ({w}) at one tick's start.
+struct PalmFrames {
+    std::array<Eigen::Vector3d, palms> position{};
+    std::array<Eigen::Matrix3d, palms> rotation{};
+};
+
 /// Each palm's predicted and measured wrench (contact frame), the measured one's true friction
 /// margin, and the slip: how far the box's centre moved in the palm's contact plane (the palm's
 /// x-y; along the normal the soft contact's penetration changes with the squeeze) since
 /// `box_in_palm` was taken.
 template <typename Plant>
-void log_palms(const Plant& plant, const ArmTerms& terms, const ControllerData& data,
+void log_palms(const Plant& plant, const PalmFrames& palms_seen, const ControllerData& data,
                const FrictionRows& friction, const std::array<Eigen::Vector3d, palms>& box_in_palm,
                const Eigen::Vector3d& box_position, TickLog& row)
 {
     for (std::size_t i = 0; i < palms; ++i) {
         const auto palm = static_cast<int>(i);
         row.predicted[i] = data.contact_frame_wrenches.col(palm);
-        const Eigen::Matrix3d& rotation = terms.palm_rotation[i];
+        const Eigen::Matrix3d& rotation = palms_seen.rotation[i];
         const Vector6d& world = plant.measured_contact_wrench(palm);
         row.measured_world[i] = world;
         row.measured[i] << rotation.transpose() * world.head<3>(), rotation.transpose() * world.tail<3>();
         row.measured_margin[i] = friction.margin(row.measured[i]);
-        const Eigen::Vector3d now = rotation.transpose() * (box_position - terms.palm_position[i]);
+        const Eigen::Vector3d now = rotation.transpose() * (box_position - palms_seen.position[i]);
         row.slip[i] = (now - box_in_palm[i]).head<2>().norm();
     }
 }
@@ -442,9 +448,11 @@ ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Gr
             }
         }
         plant.begin_tick();
-        // A copy: the rigid plant re-evaluates its terms at the next state in end_tick, and the log
-        // needs the palms where the controller saw them.
-        const ArmTerms terms = plant.arm_terms();
+        // The controller's input is read from the plant's terms directly; only the palm frames are
+        // copied: the rigid plant re-evaluates its terms at the next state in end_tick, and the
+        // log needs the palms where the controller saw them.
+        const ArmTerms& terms = plant.arm_terms();
+        const PalmFrames palms_seen{terms.palm_position, terms.palm_rotation};
         read_plant(plant, terms, filter_gain, filtered_acceleration, input);
         const Desired desired = desired_motion(scenario, grasp.box, t);
         input.desired_pose = desired.pose;
@@ -464,7 +472,7 @@ ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Gr
         if (tick == 0) {
             for (std::size_t i = 0; i < palms; ++i) {
                 box_in_palm[i] =
-                    terms.palm_rotation[i].transpose() * (input.object.pose.position - terms.palm_position[i]);
+                    palms_seen.rotation[i].transpose() * (input.object.pose.position - palms_seen.position[i]);
             }
         }
 
@@ -479,7 +487,7 @@ ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Gr
         row.disturbance = disturbance;
         row.box_acceleration = plant.box_acceleration().template head<3>();
         row.predicted_margin = data.tightest_margin;
-        log_palms(plant, terms, data, friction, box_in_palm, input.object.pose.position, row);
+        log_palms(plant, palms_seen, data, friction, box_in_palm, input.object.pose.position, row);
         row.status = data.status;
         row.qp_status = data.qp_status;
         row.qp_iterations = data.qp_iterations;
