@@ -145,23 +145,32 @@ public:
     /// (NaN is not). On failure the factor is unusable (not NaN-free).
     template <typename Derived> FixedLlt& compute(const Eigen::MatrixBase<Derived>& matrix) noexcept
     {
+        // Left-looking, as FixedCholesky: column j needs only the finished columns k < j,
+        // l_jj = sqrt(a_jj - sum_k l_jk^2), l_ij = (a_ij - sum_k l_ik l_jk) / l_jj, so every entry
+        // is one dot product kept in registers (a right-looking update rewrites the trailing
+        // triangle through memory once per column: 400 ns against 250 ns at 14 x 14).
         factor_ = matrix;
         bool positive_definite = true;
+        COOPDYN_DETAIL_UNROLL
         for (int column = 0; column < Size; ++column) {
-            const Scalar pivot = factor_(column, column);
+            Scalar pivot = factor_(column, column);
+            COOPDYN_DETAIL_UNROLL
+            for (int k = 0; k < column; ++k) {
+                pivot -= factor_(column, k) * factor_(column, k);
+            }
             positive_definite = positive_definite && pivot > Scalar(0);
             using std::sqrt;
             const Scalar diagonal = sqrt(pivot);
             factor_(column, column) = diagonal;
             inverse_diagonal_(column) = Scalar(1) / diagonal;
-                for (int row = column + 1; row < Size; ++row) {
-                factor_(row, column) *= inverse_diagonal_(column);
-            }
-                for (int later = column + 1; later < Size; ++later) {
-                const Scalar multiplier = factor_(later, column);
-                        for (int row = later; row < Size; ++row) {
-                    factor_(row, later) -= factor_(row, column) * multiplier;
+            COOPDYN_DETAIL_UNROLL
+            for (int row = column + 1; row < Size; ++row) {
+                Scalar value = factor_(row, column);
+                COOPDYN_DETAIL_UNROLL
+                for (int k = 0; k < column; ++k) {
+                    value -= factor_(row, k) * factor_(column, k);
                 }
+                factor_(row, column) = value * inverse_diagonal_(column);
             }
         }
         info_ = positive_definite ? Eigen::Success : Eigen::NumericalIssue;
