@@ -227,7 +227,14 @@ bool is_internal_basis(const Eigen::MatrixBase<DerivedR>& r, const Eigen::Matrix
                 return false;
             }
         }
-        if (!(grasp_times(r, B.col(j)).vector().norm() < tolerance * (Scalar(1) + r.norm()))) {
+        // G B_j = sum_i [f_i; t_i + r_i x f_i] (24), with r_i as a fixed 3-vector whatever r's type.
+        Vector6<Scalar> net = Vector6<Scalar>::Zero();
+        for (Index i = 0; i < r.cols(); ++i) {
+            const Vector3<Scalar> force = B.col(j).template segment<3>(6 * i);
+            net.template head<3>() += force;
+            net.template tail<3>() += B.col(j).template segment<3>(6 * i + 3) + Vector3<Scalar>(r.col(i)).cross(force);
+        }
+        if (!(net.norm() < tolerance * (Scalar(1) + r.norm()))) {
             return false;
         }
     }
