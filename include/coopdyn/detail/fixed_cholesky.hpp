@@ -127,9 +127,8 @@ private:
 /// 6 to 24 rows), with the interface of Eigen::LLT that the controller uses plus explicit
 /// triangular solves. Why not Eigen::LLT: it factorises with run-time loop bounds over dynamic
 /// blocks and solves vectors longer than 8 through GEMV panels, which at these sizes costs several
-/// times the arithmetic. Here every loop has a compile-time trip count. Right-looking: once column
-/// j is scaled, the updates of the columns after it are independent of each other, so the serial
-/// chain per column is one square root, one division and one multiply-add.
+/// times the arithmetic. Here every loop has a compile-time trip count (left-looking; see
+/// compute()).
 template <typename Scalar, int Size> class FixedLlt {
 public:
     using Matrix = Eigen::Matrix<Scalar, Size, Size>;
@@ -187,10 +186,10 @@ public:
     {
         auto& X = const_cast<Eigen::MatrixBase<Derived>&>(X_out);
         for (Index j = 0; j < X.cols(); ++j) {
-                for (int k = 0; k < Size; ++k) {
+            for (int k = 0; k < Size; ++k) {
                 const Scalar value = X(k, j) * inverse_diagonal_(k);
                 X(k, j) = value;
-                        for (int row = k + 1; row < Size; ++row) {
+                for (int row = k + 1; row < Size; ++row) {
                     X(row, j) -= factor_(row, k) * value;
                 }
             }
@@ -202,9 +201,9 @@ public:
     {
         auto& X = const_cast<Eigen::MatrixBase<Derived>&>(X_out);
         for (Index j = 0; j < X.cols(); ++j) {
-                for (int k = Size - 1; k >= 0; --k) {
+            for (int k = Size - 1; k >= 0; --k) {
                 Scalar value = X(k, j);
-                        for (int row = k + 1; row < Size; ++row) {
+                for (int row = k + 1; row < Size; ++row) {
                     value -= factor_(row, k) * X(row, j);
                 }
                 X(k, j) = value * inverse_diagonal_(k);
