@@ -105,6 +105,17 @@ constexpr bool sizes_agree(int a, int b) noexcept
 
 }  // namespace coopdyn
 
+/// Put before a function defined in a header whose body uses Eigen's decompositions or large
+/// products (QR, SVD, LU, eigen-solvers, GEMM), instead of `inline`: it makes the function a
+/// template with one defaulted parameter, called exactly as before. Why: a non-template inline
+/// function is compiled, with every Eigen template it uses, in every file that includes its header,
+/// called or not (including analysis.hpp cost about 19 s of g++ -O2 user CPU); a template is
+/// instantiated only in the files that call it. Callers of such a function that are themselves
+/// non-template must use it too. docs/performance.md, "Compile time".
+#define COOPDYN_LAZY template <typename CompiledWhereUsed = void>
+/// The definition of a COOPDYN_LAZY function declared earlier (the default is given once).
+#define COOPDYN_LAZY_DEFINITION template <typename CompiledWhereUsed>
+
 /// Forces inlining of the small 3-vector helpers of the per-tick path (cross products, scalings,
 /// the shift of a motion or force). Why: g++ 12 keeps some of them out of line; their 3-vector
 /// arguments then travel through memory, stored as scalars and reloaded by its SLP vectoriser as

@@ -66,7 +66,7 @@ struct EquationErrorEstimate {
 };
 
 /// The regression's columns and right-hand side, integrals by the cumulative trapezoidal rule.
-inline EquationErrorRegression equation_error_regression(const AxisRecord& record, double sample_period)
+COOPDYN_LAZY EquationErrorRegression equation_error_regression(const AxisRecord& record, double sample_period)
 {
     const Eigen::VectorXd& position = record.position;
     const Eigen::VectorXd& force = record.force;
@@ -93,7 +93,7 @@ inline EquationErrorRegression equation_error_regression(const AxisRecord& recor
 /// condition number measures excitation rather than units.
 class EquilibratedLeastSquares {
 public:
-    explicit EquilibratedLeastSquares(const Eigen::MatrixXd& regressor)
+    COOPDYN_LAZY explicit EquilibratedLeastSquares(const Eigen::MatrixXd& regressor)
         : norms_(regressor.colwise().norm().transpose())
     {
         if (usable()) {
@@ -105,7 +105,7 @@ public:
     bool usable() const { return norms_.minCoeff() > 0.0 && norms_.allFinite(); }
 
     /// Condition number of the equilibrated regressor (largest / smallest singular value of R).
-    double condition_number() const
+    COOPDYN_LAZY double condition_number() const
     {
         const Index columns = norms_.size();
         // Dynamic-size R: a fixed 5x5 SVD trips GCC 12's -Warray-bounds false positives.
@@ -114,7 +114,7 @@ public:
         return singular_values(0) / singular_values(columns - 1);
     }
 
-    Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return qr_.solve(rhs).cwiseQuotient(norms_); }
+    COOPDYN_LAZY Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return qr_.solve(rhs).cwiseQuotient(norms_); }
 
 private:
     Eigen::VectorXd norms_;
@@ -123,7 +123,7 @@ private:
 
 /// The regression's least-squares solution; m may be <= 0 (low signal-to-noise ratio). Throws
 /// InvalidArgument when the regression is singular (unexcited data) or its solution not finite.
-inline EquationErrorEstimate equation_error_estimate(const EquationErrorRegression& regression,
+COOPDYN_LAZY EquationErrorEstimate equation_error_estimate(const EquationErrorRegression& regression,
                                                      const AxisRecord& record)
 {
     const char* const unexcited =
@@ -148,7 +148,7 @@ inline EquationErrorEstimate equation_error_estimate(const EquationErrorRegressi
 
 /// The mass that centres the profile's grid: |m| of `estimate`, or, if that is 0, |k| / omega^2
 /// at the geometric mean of the record's lowest and the Nyquist frequency. Throws when both are 0.
-inline double mass_profile_reference(const EquationErrorEstimate& estimate, const AxisRecord& record,
+COOPDYN_LAZY double mass_profile_reference(const EquationErrorEstimate& estimate, const AxisRecord& record,
                                      double sample_period)
 {
     constexpr double pi = 3.14159265358979323846;
@@ -168,7 +168,7 @@ inline double mass_profile_reference(const EquationErrorEstimate& estimate, cons
 /// 10^6 either way of m_ref, mass_profile_reference), the least-squares (d, k, a, c) with m = m_j
 /// fixed. With beta_f and beta_p the solutions for the right-hand sides F2 and p over the
 /// columns [P1, P2, 1, t], (d, k, a, c)(m) = beta_f - m beta_p.
-inline std::vector<EquationErrorEstimate> mass_profile(const EquationErrorRegression& regression,
+COOPDYN_LAZY std::vector<EquationErrorEstimate> mass_profile(const EquationErrorRegression& regression,
                                                        const EquationErrorEstimate& estimate,
                                                        const AxisRecord& record, double sample_period)
 {

@@ -141,10 +141,10 @@ namespace detail {
 template <typename Derived>
 Eigen::VectorXd samples_of(const Eigen::MatrixBase<Derived>& samples, const ErrorContext& context,
                            const std::string& parameter);
-inline void check_options(const IdentificationOptions& options, const ErrorContext& context);
-inline void check_diagonal_shapes(Index displacement_rows, Index displacement_columns, Index wrench_rows,
+COOPDYN_LAZY void check_options(const IdentificationOptions& options, const ErrorContext& context);
+COOPDYN_LAZY void check_diagonal_shapes(Index displacement_rows, Index displacement_columns, Index wrench_rows,
                                   Index wrench_columns, const ErrorContext& context);
-inline ImpedanceFit identify_axis(const AxisRecord& record, double sample_period, const IdentificationOptions& options);
+COOPDYN_LAZY ImpedanceFit identify_axis(const AxisRecord& record, double sample_period, const IdentificationOptions& options);
 
 }  // namespace detail
 
@@ -297,7 +297,7 @@ Eigen::VectorXd samples_of(const Eigen::MatrixBase<Derived>& samples, const Erro
     return result;
 }
 
-inline void check_options(const IdentificationOptions& options, const ErrorContext& context)
+COOPDYN_LAZY_DEFINITION void check_options(const IdentificationOptions& options, const ErrorContext& context)
 {
     if (options.max_iterations < 0) {
         fail(context, "options.max_iterations", "must be non-negative, got " + std::to_string(options.max_iterations));
@@ -308,7 +308,7 @@ inline void check_options(const IdentificationOptions& options, const ErrorConte
     }
 }
 
-inline void check_diagonal_shapes(Index displacement_rows, Index displacement_columns, Index wrench_rows,
+COOPDYN_LAZY_DEFINITION void check_diagonal_shapes(Index displacement_rows, Index displacement_columns, Index wrench_rows,
                                   Index wrench_columns, const ErrorContext& context)
 {
     if (displacement_rows != 6) {
@@ -331,11 +331,11 @@ struct AxisModel {
 };
 
 class OutputErrorProblem;
-inline void check_record(const AxisRecord& record);
-inline AxisModel model_from(const EquationErrorEstimate& estimate);
-inline AxisModel mass_search_start(const EquationErrorRegression& regression, const EquationErrorEstimate& step1,
+COOPDYN_LAZY void check_record(const AxisRecord& record);
+COOPDYN_LAZY AxisModel model_from(const EquationErrorEstimate& estimate);
+COOPDYN_LAZY AxisModel mass_search_start(const EquationErrorRegression& regression, const EquationErrorEstimate& step1,
                                    const OutputErrorProblem& problem, const AxisRecord& record, double sample_period);
-inline ImpedanceFit fit_from(const EquationErrorEstimate& step1, bool equation_error_start, const AxisModel& estimate,
+COOPDYN_LAZY ImpedanceFit fit_from(const EquationErrorEstimate& step1, bool equation_error_start, const AxisModel& estimate,
                              const numerics::LevenbergMarquardtResult& refined, Index samples);
 
 /// Step 2's least-squares problem for one axis: theta = (m, d, k, p0, v0), or (m, d, k) with the
@@ -364,14 +364,14 @@ public:
         return {{theta(0), theta(1), theta(2)}, state(0), state(1)};
     }
 
-    double cost(const Eigen::VectorXd& theta) const
+    COOPDYN_LAZY double cost(const Eigen::VectorXd& theta) const
     {
         const std::optional<DiscreteImpedance> model = discretize(theta);
         return model ? output_error_cost(*model, record_.force, record_.position, initial_state_of(theta))
                      : std::numeric_limits<double>::infinity();
     }
 
-    numerics::NormalEquations linearise(const Eigen::VectorXd& theta) const
+    COOPDYN_LAZY numerics::NormalEquations linearise(const Eigen::VectorXd& theta) const
     {
         const std::optional<DiscreteImpedance> model = discretize(theta);
         if (!model) {
@@ -382,7 +382,7 @@ public:
     }
 
 private:
-    std::optional<DiscreteImpedance> discretize(const Eigen::VectorXd& theta) const
+    COOPDYN_LAZY std::optional<DiscreteImpedance> discretize(const Eigen::VectorXd& theta) const
     {
         return discretize_impedance(theta(0), theta(1), theta(2), sample_period_, options_.force_interpolation);
     }
@@ -398,7 +398,7 @@ private:
 };
 
 /// Steps 1 and 2 for one axis (see the file comment).
-inline ImpedanceFit identify_axis(const AxisRecord& record, double sample_period, const IdentificationOptions& options)
+COOPDYN_LAZY_DEFINITION ImpedanceFit identify_axis(const AxisRecord& record, double sample_period, const IdentificationOptions& options)
 {
     check_record(record);
     const EquationErrorRegression regression = equation_error_regression(record, sample_period);
@@ -428,7 +428,7 @@ inline ImpedanceFit identify_axis(const AxisRecord& record, double sample_period
 }
 
 /// Enough samples, equal lengths, and a force that sets the scale of m, d and k.
-inline void check_record(const AxisRecord& record)
+COOPDYN_LAZY_DEFINITION void check_record(const AxisRecord& record)
 {
     const Index samples = record.position.size();
     if (samples < identification_minimum_samples) {
@@ -446,7 +446,7 @@ inline void check_record(const AxisRecord& record)
 }
 
 /// The model a regression solution describes, with its initial state (m != 0).
-inline AxisModel model_from(const EquationErrorEstimate& estimate)
+COOPDYN_LAZY_DEFINITION AxisModel model_from(const EquationErrorEstimate& estimate)
 {
     return {{estimate.mass, estimate.damping, estimate.stiffness}, estimate.initial_position(),
             estimate.initial_velocity()};
@@ -454,7 +454,7 @@ inline AxisModel model_from(const EquationErrorEstimate& estimate)
 
 /// Step 2's start when step 1 gives no positive mass: the candidate of the mass profile
 /// (equation_error.hpp) with the smallest output error. Throws when none can be simulated.
-inline AxisModel mass_search_start(const EquationErrorRegression& regression, const EquationErrorEstimate& step1,
+COOPDYN_LAZY_DEFINITION AxisModel mass_search_start(const EquationErrorRegression& regression, const EquationErrorEstimate& step1,
                                    const OutputErrorProblem& problem, const AxisRecord& record, double sample_period)
 {
     AxisModel best;
@@ -475,7 +475,7 @@ inline AxisModel mass_search_start(const EquationErrorRegression& regression, co
 }
 
 /// The public result from both steps' estimates.
-inline ImpedanceFit fit_from(const EquationErrorEstimate& step1, bool equation_error_start, const AxisModel& estimate,
+COOPDYN_LAZY_DEFINITION ImpedanceFit fit_from(const EquationErrorEstimate& step1, bool equation_error_start, const AxisModel& estimate,
                              const numerics::LevenbergMarquardtResult& refined, Index samples)
 {
     const double count = static_cast<double>(samples);

@@ -23,6 +23,8 @@
 /// [W; dW/dtheta].
 #pragma once
 
+#include "coopdyn/config.hpp"
+
 #include "coopdyn/numerics/levenberg_marquardt.hpp"
 #include "coopdyn/numerics/linear_discretization.hpp"
 
@@ -98,7 +100,7 @@ inline ForceWindow force_window(Eigen::Index points, Eigen::Index n, Eigen::Inde
 }
 
 /// Offsets of the samples of window placement `placement` relative to n: j - placement.
-inline Eigen::VectorXd window_nodes(Eigen::Index points, Eigen::Index placement)
+COOPDYN_LAZY Eigen::VectorXd window_nodes(Eigen::Index points, Eigen::Index placement)
 {
     Eigen::VectorXd nodes(points);
     for (Eigen::Index j = 0; j < points; ++j) {
@@ -114,7 +116,7 @@ struct SensitivitySystem {
     Eigen::MatrixXd input = Eigen::MatrixXd::Zero(8, 1);
 };
 
-inline SensitivitySystem sensitivity_system(double mass, double damping, double stiffness)
+COOPDYN_LAZY SensitivitySystem sensitivity_system(double mass, double damping, double stiffness)
 {
     const double inverse_mass = 1.0 / mass;
     const double inverse_mass_squared = inverse_mass * inverse_mass;
@@ -141,7 +143,7 @@ inline SensitivitySystem sensitivity_system(double mass, double damping, double 
 
 /// The exact recurrence of m pdd + d pd + k p = f over one period T with its derivatives (see the
 /// file comment); nullopt when m <= 0, a parameter is not finite, or the recurrence is not finite.
-inline std::optional<DiscreteImpedance> discretize_impedance(double mass, double damping, double stiffness,
+COOPDYN_LAZY std::optional<DiscreteImpedance> discretize_impedance(double mass, double damping, double stiffness,
                                                              double sample_period, ForceInterpolation interpolation)
 {
     if (!(mass > 0.0) || !std::isfinite(mass) || !std::isfinite(damping) || !std::isfinite(stiffness)) {
@@ -184,14 +186,14 @@ struct MotionWithSensitivities {
 };
 
 /// x[n+1] = Phi x[n] + W f_window.
-inline Eigen::Vector2d advance(const DiscreteImpedance& model, const Eigen::Vector2d& motion, const WindowInput& input,
+COOPDYN_LAZY Eigen::Vector2d advance(const DiscreteImpedance& model, const Eigen::Vector2d& motion, const WindowInput& input,
                                const Eigen::Ref<const Eigen::VectorXd>& window)
 {
     return model.transition * motion + input.value * window;
 }
 
 /// The motion and, by the differentiated recurrence (see the file comment), its sensitivities.
-inline MotionWithSensitivities advance(const DiscreteImpedance& model, const MotionWithSensitivities& state,
+COOPDYN_LAZY MotionWithSensitivities advance(const DiscreteImpedance& model, const MotionWithSensitivities& state,
                                        const WindowInput& input, const Eigen::Ref<const Eigen::VectorXd>& window)
 {
     MotionWithSensitivities next;
@@ -221,7 +223,7 @@ void run_over_record(const DiscreteImpedance& model, const Eigen::VectorXd& forc
 }
 
 /// The simulated positions p[n] from (p0, v0).
-inline Eigen::VectorXd simulated_positions(const DiscreteImpedance& model, const Eigen::VectorXd& force,
+COOPDYN_LAZY Eigen::VectorXd simulated_positions(const DiscreteImpedance& model, const Eigen::VectorXd& force,
                                            const Eigen::Vector2d& initial_state)
 {
     Eigen::VectorXd positions(force.size());
@@ -231,7 +233,7 @@ inline Eigen::VectorXd simulated_positions(const DiscreteImpedance& model, const
 }
 
 /// Output error sum_n (p_model[n] - position[n])^2 from (p0, v0); +inf when it is not finite.
-inline double output_error_cost(const DiscreteImpedance& model, const Eigen::VectorXd& force,
+COOPDYN_LAZY double output_error_cost(const DiscreteImpedance& model, const Eigen::VectorXd& force,
                                 const Eigen::VectorXd& position, const Eigen::Vector2d& initial_state)
 {
     double cost = 0.0;
@@ -244,7 +246,7 @@ inline double output_error_cost(const DiscreteImpedance& model, const Eigen::Vec
 
 /// The output error with its Gauss-Newton normal equations over the first `parameters` of
 /// (m, d, k, p0, v0) (3: the initial state is held fixed, or 5); cost +inf when not finite.
-inline numerics::NormalEquations output_error_normal_equations(const DiscreteImpedance& model,
+COOPDYN_LAZY numerics::NormalEquations output_error_normal_equations(const DiscreteImpedance& model,
                                                                const Eigen::VectorXd& force,
                                                                const Eigen::VectorXd& position,
                                                                const Eigen::Vector2d& initial_state,

@@ -70,7 +70,7 @@ namespace detail {
 
 /// The 21 independent entries of a symmetric 6x6 matrix (lower triangle, off-diagonal entries
 /// weighted by sqrt(2) so that the Euclidean norm equals the Frobenius norm).
-inline Eigen::Matrix<double, 21, 1> symmetric_entries(const Matrix6<double>& matrix)
+COOPDYN_LAZY Eigen::Matrix<double, 21, 1> symmetric_entries(const Matrix6<double>& matrix)
 {
     Eigen::Matrix<double, 21, 1> result;
     int index = 0;
@@ -84,14 +84,14 @@ inline Eigen::Matrix<double, 21, 1> symmetric_entries(const Matrix6<double>& mat
 
 /// T(r) = G_i diag(I3, 0) G_i^T = [[I3, S(r)^T], [S(r), S(r) S(r)^T]]: the object matrix of a
 /// unit translational gain at grasp offset r (errata E3, docs/analysis.md).
-inline Matrix6<double> unit_translational_contribution(const Vector3<double>& r_i)
+COOPDYN_LAZY Matrix6<double> unit_translational_contribution(const Vector3<double>& r_i)
 {
     return CentralInertia<double>(1.0, Symmetric3<double>::Zero()).shifted(r_i).matrix();
 }
 
 /// R = G_i diag(0, I3) G_i^T = diag(0, I3): the object matrix of a unit rotational gain (a
 /// massless inertia is unchanged by the shift, whatever r_i).
-inline Matrix6<double> unit_rotational_contribution()
+COOPDYN_LAZY Matrix6<double> unit_rotational_contribution()
 {
     return CentralInertia<double>(0.0, Symmetric3<double>::Identity()).matrix();
 }
@@ -137,7 +137,7 @@ std::vector<typename ModelType::ArmType> arms_with_gains(const ModelType& model,
 }
 
 /// `matrix`: "stiffness" or "damping", the object matrix the gains were synthesized for.
-inline void require_achievable(const SynthesisResult<double>& gains, const std::string& matrix)
+COOPDYN_LAZY void require_achievable(const SynthesisResult<double>& gains, const std::string& matrix)
 {
     if (!gains.achievable) {
         std::ostringstream problem;
@@ -246,7 +246,7 @@ SynthesisResult<double> synthesize_damping(const ModelType& model, const Data<Mo
 /// \param stiffness symmetric positive semi-definite 6x6 K.
 /// \param damping_ratio zeta >= 0.
 /// \throws InvalidArgument on a non-symmetric or indefinite M or K, or a negative zeta.
-inline Matrix6<double> classical_damping(const Matrix6<double>& inertia, const Matrix6<double>& stiffness,
+COOPDYN_LAZY Matrix6<double> classical_damping(const Matrix6<double>& inertia, const Matrix6<double>& stiffness,
                                          double damping_ratio)
 {
     const std::string context = "classical damping";
@@ -269,7 +269,7 @@ inline Matrix6<double> classical_damping(const Matrix6<double>& inertia, const M
 }
 
 /// \brief classical_damping of the apparent inertia and stiffness of Theorem 2.
-inline Matrix6<double> classical_damping(const ApparentImpedance<double>& impedance, double damping_ratio)
+COOPDYN_LAZY Matrix6<double> classical_damping(const ApparentImpedance<double>& impedance, double damping_ratio)
 {
     return classical_damping(impedance.inertia, impedance.stiffness, damping_ratio);
 }

@@ -7,6 +7,7 @@
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/errors.hpp"
+#include "coopdyn/numerics/symmetric_eigenvalues.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -145,9 +146,7 @@ void require_symmetric_positive(const Eigen::MatrixBase<Derived>& matrix, const 
     if ((values - values.transpose()).cwiseAbs().maxCoeff() > tolerance_for<Scalar>(1e-9) * scale) {
         fail(context, parameter, "must be symmetric");
     }
-    using Dense = Eigen::Matrix<double, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime>;
-    const Eigen::SelfAdjointEigenSolver<Dense> eigen(values);
-    const double smallest = eigen.eigenvalues().minCoeff();
+    const double smallest = numerics::symmetric_eigenvalues(values).minCoeff();
     const bool acceptable =
         allow_semidefinite ? smallest >= -tolerance_for<Scalar>(1e-12) * scale : smallest > 0.0;
     if (!acceptable) {
@@ -168,8 +167,7 @@ void require_triangle_inequality(const Eigen::MatrixBase<Derived>& matrix, const
 {
     using Scalar = typename Derived::Scalar;
     const Eigen::Matrix3d values = values_of(matrix);
-    const Eigen::Vector3d moments =
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(values, Eigen::EigenvaluesOnly).eigenvalues();
+    const Eigen::Vector3d moments = numerics::symmetric_eigenvalues(values);
     if (moments(2) > moments(0) + moments(1) + tolerance_for<Scalar>(1e-9) * moments(2)) {
         std::ostringstream problem;
         problem << "is not the inertia of a rigid body: its largest principal moment " << moments(2)

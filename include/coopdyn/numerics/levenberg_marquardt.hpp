@@ -19,6 +19,8 @@
 /// below `tolerance`.
 #pragma once
 
+#include "coopdyn/config.hpp"
+
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
@@ -36,7 +38,7 @@ struct NormalEquations {
 };
 
 /// \brief NormalEquations from residuals r (m) and their Jacobian J (m x n).
-inline NormalEquations normal_equations(const Eigen::VectorXd& residuals, const Eigen::MatrixXd& jacobian)
+COOPDYN_LAZY NormalEquations normal_equations(const Eigen::VectorXd& residuals, const Eigen::MatrixXd& jacobian)
 {
     return {residuals.squaredNorm(), jacobian.transpose() * jacobian, jacobian.transpose() * residuals};
 }
@@ -81,7 +83,7 @@ struct MarquardtDamping {
 
 /// Marquardt's scaling diag(J^T J), floored at eps times its largest entry so that an unexcited
 /// parameter still gets some damping; empty when J^T J has no positive diagonal.
-inline Eigen::VectorXd marquardt_scale(const Eigen::MatrixXd& normal)
+COOPDYN_LAZY Eigen::VectorXd marquardt_scale(const Eigen::MatrixXd& normal)
 {
     const Eigen::VectorXd diagonal = normal.diagonal();
     const double largest = diagonal.size() > 0 ? diagonal.maxCoeff() : 0.0;
@@ -93,7 +95,7 @@ inline Eigen::VectorXd marquardt_scale(const Eigen::MatrixXd& normal)
 
 /// Scale-free first-order test: the largest cosine |J_j^T r| / (|J_j| |r|) between the residual and
 /// a Jacobian column is at most `tolerance` (or the cost is zero, or J is zero).
-inline bool is_stationary(const NormalEquations& point, const Eigen::VectorXd& scale, double tolerance)
+COOPDYN_LAZY bool is_stationary(const NormalEquations& point, const Eigen::VectorXd& scale, double tolerance)
 {
     if (point.cost == 0.0 || scale.size() == 0) {
         return true;

@@ -50,7 +50,7 @@ struct LinearDiscretization {
 /// \param a A, n x n. \param b B, n x m. \param sample_period T > 0.
 /// \param degree q >= 0 (0: constant input).
 /// \return n x n transition and q + 1 moments of n x m. Not finite when exp(A T) is not.
-inline PolynomialInputDiscretization discretize_polynomial_input(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+COOPDYN_LAZY PolynomialInputDiscretization discretize_polynomial_input(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
                                                                  double sample_period, int degree)
 {
     COOPDYN_ASSERT(a.rows() == a.cols() && b.rows() == a.rows(), "A must be n x n and B n x m");
@@ -85,7 +85,7 @@ inline PolynomialInputDiscretization discretize_polynomial_input(const Eigen::Ma
 /// \param nodes sample offsets of the window relative to the period's start (in periods,
 ///        distinct; e.g. (0) zero-order hold, (0, 1) first-order hold, (-1, 0, 1, 2) cubic).
 /// \return W = [W_0 .. W_{k-1}], n x (m k).
-inline Eigen::MatrixXd interpolated_input_matrix(const PolynomialInputDiscretization& discretization,
+COOPDYN_LAZY Eigen::MatrixXd interpolated_input_matrix(const PolynomialInputDiscretization& discretization,
                                                  const Eigen::VectorXd& nodes)
 {
     const Eigen::Index count = nodes.size();
@@ -114,7 +114,7 @@ inline Eigen::MatrixXd interpolated_input_matrix(const PolynomialInputDiscretiza
 /// \brief Exact discretisation for an input interpolated through `nodes` (see
 /// interpolated_input_matrix): x[k+1] = transition x[k] + input [u[k + nodes(0)]; ..].
 /// \param a A, n x n. \param b B, n x m. \param sample_period T > 0. \param nodes distinct offsets.
-inline LinearDiscretization discretize_interpolated_input(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+COOPDYN_LAZY LinearDiscretization discretize_interpolated_input(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
                                                           double sample_period, const Eigen::VectorXd& nodes)
 {
     const PolynomialInputDiscretization polynomial =
@@ -125,7 +125,7 @@ inline LinearDiscretization discretize_interpolated_input(const Eigen::MatrixXd&
 /// \brief Zero-order hold: u(t) = u[k] on [kT, (k+1)T). x[k+1] = Phi x[k] + Gamma u[k] with
 /// Gamma = int_0^T exp(A s) ds B.
 /// \param a A, n x n. \param b B, n x m. \param sample_period T > 0. \return input n x m.
-inline LinearDiscretization discretize_zero_order_hold(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+COOPDYN_LAZY LinearDiscretization discretize_zero_order_hold(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
                                                        double sample_period)
 {
     return discretize_interpolated_input(a, b, sample_period, Eigen::VectorXd::Zero(1));
@@ -134,7 +134,7 @@ inline LinearDiscretization discretize_zero_order_hold(const Eigen::MatrixXd& a,
 /// \brief First-order hold (non-causal, triangle hold): u(t) is the straight line from u[k] to
 /// u[k+1] on [kT, (k+1)T). x[k+1] = Phi x[k] + [Gamma_0 - Gamma_1, Gamma_1] [u[k]; u[k+1]].
 /// \param a A, n x n. \param b B, n x m. \param sample_period T > 0. \return input n x 2m.
-inline LinearDiscretization discretize_first_order_hold(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+COOPDYN_LAZY LinearDiscretization discretize_first_order_hold(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
                                                         double sample_period)
 {
     return discretize_interpolated_input(a, b, sample_period, Eigen::Vector2d(0.0, 1.0));

@@ -13,6 +13,8 @@
 /// then at most the unit roundoff of double.
 #pragma once
 
+#include "coopdyn/config.hpp"
+
 #include <Eigen/Core>
 #include <Eigen/LU>
 
@@ -43,7 +45,7 @@ inline std::array<double, 14> pade_coefficients(int degree) noexcept
 /// r_m(x) = q_m(x)^-1 p_m(x) for m in {3, 5, 7, 9, 13}. With U the odd and V the even part of
 /// p_m, p_m(x) = V + U and q_m(x) = V - U. Degree 13 uses Higham's evaluation from x^2, x^4, x^6
 /// (six products instead of twelve).
-inline Eigen::MatrixXd pade_approximant(const Eigen::MatrixXd& x, int degree)
+COOPDYN_LAZY Eigen::MatrixXd pade_approximant(const Eigen::MatrixXd& x, int degree)
 {
     const std::array<double, 14> c = pade_coefficients(degree);
     const Eigen::Index size = x.rows();
@@ -78,7 +80,7 @@ inline Eigen::MatrixXd pade_approximant(const Eigen::MatrixXd& x, int degree)
 /// \return exp(a), n x n. All NaN when `a` is not finite; entries overflow to Inf (or become NaN)
 ///         when exp(a) is not representable. Relative error a small multiple of
 ///         cond(exp, a) * 1.1e-16 (measured in tests/numerics/test_matrix_exponential.cpp).
-inline Eigen::MatrixXd matrix_exponential(const Eigen::MatrixXd& a)
+COOPDYN_LAZY Eigen::MatrixXd matrix_exponential(const Eigen::MatrixXd& a)
 {
     const Eigen::Index size = a.rows();
     if (size == 0) {

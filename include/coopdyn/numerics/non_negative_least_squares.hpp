@@ -12,6 +12,8 @@
 /// solve is repeated.
 #pragma once
 
+#include "coopdyn/config.hpp"
+
 #include <Eigen/Core>
 #include <Eigen/QR>
 
@@ -44,7 +46,7 @@ struct LawsonHanson {
     void unblock_all() { std::fill(blocked.begin(), blocked.end(), false); }
 };
 
-inline LawsonHanson scaled_problem(const Eigen::MatrixXd& matrix, const Eigen::VectorXd& rhs, double rhs_norm)
+COOPDYN_LAZY LawsonHanson scaled_problem(const Eigen::MatrixXd& matrix, const Eigen::VectorXd& rhs, double rhs_norm)
 {
     const Eigen::Index unknowns = matrix.cols();
     LawsonHanson problem;
@@ -65,7 +67,7 @@ inline LawsonHanson scaled_problem(const Eigen::MatrixXd& matrix, const Eigen::V
 }
 
 /// z: the unconstrained least-squares solution over the passive columns, zero elsewhere.
-inline Eigen::VectorXd passive_least_squares(const LawsonHanson& problem)
+COOPDYN_LAZY Eigen::VectorXd passive_least_squares(const LawsonHanson& problem)
 {
     std::vector<Eigen::Index> columns;
     for (Eigen::Index j = 0; j < problem.matrix.cols(); ++j) {
@@ -87,7 +89,7 @@ inline Eigen::VectorXd passive_least_squares(const LawsonHanson& problem)
 
 /// The variable to free: the largest gradient w_j above the threshold among the active,
 /// unblocked, non-zero columns; -1 when there is none (the Kuhn-Tucker conditions hold).
-inline Eigen::Index entering_variable(const LawsonHanson& problem)
+COOPDYN_LAZY Eigen::Index entering_variable(const LawsonHanson& problem)
 {
     const Eigen::VectorXd gradient =
         problem.matrix.transpose() * (problem.target - problem.matrix * problem.solution);
@@ -105,7 +107,7 @@ inline Eigen::Index entering_variable(const LawsonHanson& problem)
 
 /// One inner step towards `candidate` (z): the longest step alpha in (0, 1] that keeps x >= 0;
 /// the passive variables that reach zero return to the active set.
-inline void step_towards(LawsonHanson& problem, const Eigen::VectorXd& candidate)
+COOPDYN_LAZY void step_towards(LawsonHanson& problem, const Eigen::VectorXd& candidate)
 {
     double step = 1.0;
     for (Eigen::Index j = 0; j < candidate.size(); ++j) {
@@ -128,7 +130,7 @@ inline void step_towards(LawsonHanson& problem, const Eigen::VectorXd& candidate
 
 /// The inner loop after `entering` joined the passive set: repeats the passive solve until it is
 /// positive (then x = z), or blocks `entering` when rounding makes its first value non-positive.
-inline void solve_passive_set(LawsonHanson& problem, Eigen::Index entering, int iteration_limit)
+COOPDYN_LAZY void solve_passive_set(LawsonHanson& problem, Eigen::Index entering, int iteration_limit)
 {
     for (int inner = 0; inner < iteration_limit; ++inner) {
         const Eigen::VectorXd candidate = passive_least_squares(problem);
@@ -158,7 +160,7 @@ inline void solve_passive_set(LawsonHanson& problem, Eigen::Index entering, int 
 /// \param rhs b, m.
 /// \return x, n, non-negative. The Karush-Kuhn-Tucker conditions hold to about 64 max(m, n) eps
 ///         relative (measured in tests/numerics/test_non_negative_least_squares.cpp).
-inline Eigen::VectorXd non_negative_least_squares(const Eigen::MatrixXd& matrix, const Eigen::VectorXd& rhs)
+COOPDYN_LAZY Eigen::VectorXd non_negative_least_squares(const Eigen::MatrixXd& matrix, const Eigen::VectorXd& rhs)
 {
     const Eigen::Index unknowns = matrix.cols();
     Eigen::VectorXd result = Eigen::VectorXd::Zero(unknowns);
