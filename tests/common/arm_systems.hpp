@@ -33,7 +33,7 @@ struct ArmCase {
 inline constexpr ArmCase arm_cases[] = {{2, false}, {2, true}, {3, false}, {3, true}, {4, false}, {4, true}};
 
 /// Moore-Penrose pseudo-inverse by SVD, singular values below 1e-10 of the largest dropped.
-inline MatrixXd pseudo_inverse(const MatrixXd& matrix)
+COOPDYN_LAZY MatrixXd pseudo_inverse(const MatrixXd& matrix)
 {
     const Eigen::JacobiSVD<MatrixXd> svd(matrix, Eigen::ComputeThinU | Eigen::ComputeThinV);
     const VectorXd& values = svd.singularValues();
@@ -47,7 +47,7 @@ inline MatrixXd pseudo_inverse(const MatrixXd& matrix)
 }
 
 /// Numerical rank by SVD (relative threshold 1e-10).
-inline Index numerical_rank(const MatrixXd& matrix)
+COOPDYN_LAZY Index numerical_rank(const MatrixXd& matrix)
 {
     const Eigen::JacobiSVD<MatrixXd> svd(matrix);
     const VectorXd& values = svd.singularValues();
@@ -63,7 +63,7 @@ struct LiteralGrasp {
     MatrixXd G, G_pinv, N, Jc, Jx;
 };
 
-inline LiteralGrasp literal_grasp(const MatrixXd& r, const MatrixXd& J)
+COOPDYN_LAZY LiteralGrasp literal_grasp(const MatrixXd& r, const MatrixXd& J)
 {
     LiteralGrasp grasp;
     grasp.G = literal_grasp_matrix(r);
@@ -79,7 +79,7 @@ inline LiteralGrasp literal_grasp(const MatrixXd& r, const MatrixXd& J)
 /// contact Jacobians with entries in [-1, 1] on the arm's own (and the torso's) columns, a
 /// random SPD joint inertia (condition ~ 10-100), contact points 0.1-0.5 m from the centre, and
 /// qdot projected onto the constraint manifold with the literal P.
-inline JointSpaceSystem random_joint_space_system(Index arms, bool torso, Rng& rng)
+COOPDYN_LAZY JointSpaceSystem random_joint_space_system(Index arms, bool torso, Rng& rng)
 {
     JointSpaceSystem system;
     system.arms = arms;
@@ -127,7 +127,7 @@ struct PhysicalSolution {
     double residual = 0;
 };
 
-inline PhysicalSolution solve_physical_model(const JointSpaceSystem& s, const VectorXd& tau, const Vector6d& external)
+COOPDYN_LAZY PhysicalSolution solve_physical_model(const JointSpaceSystem& s, const VectorXd& tau, const Vector6d& external)
 {
     const Index q = s.joints;
     const Index m = 6 * s.arms;

@@ -40,13 +40,13 @@ using Rng = std::mt19937;
 // 1. Random numbers, matrices, rotations and grasp offsets
 // =============================================================================================
 
-inline double uniform(Rng& rng, double low, double high)
+COOPDYN_LAZY double uniform(Rng& rng, double low, double high)
 {
     return std::uniform_real_distribution<double>(low, high)(rng);
 }
 
 /// rows x cols, entries uniform in [low, high], drawn column by column.
-inline MatrixXd random_matrix(Index rows, Index cols, Rng& rng, double low = -1.0, double high = 1.0)
+COOPDYN_LAZY MatrixXd random_matrix(Index rows, Index cols, Rng& rng, double low = -1.0, double high = 1.0)
 {
     MatrixXd result(rows, cols);
     for (Index j = 0; j < cols; ++j) {
@@ -57,20 +57,20 @@ inline MatrixXd random_matrix(Index rows, Index cols, Rng& rng, double low = -1.
     return result;
 }
 
-inline VectorXd random_vector(Index size, Rng& rng, double low = -1.0, double high = 1.0)
+COOPDYN_LAZY VectorXd random_vector(Index size, Rng& rng, double low = -1.0, double high = 1.0)
 {
     return random_matrix(size, 1, rng, low, high);
 }
 
 /// A 3-vector with entries uniform in [-scale, scale].
-inline Vector3d random_vector(Rng& rng, double scale = 1.0)
+COOPDYN_LAZY Vector3d random_vector(Rng& rng, double scale = 1.0)
 {
     std::uniform_real_distribution<double> entry(-scale, scale);
     return Vector3d(entry(rng), entry(rng), entry(rng));
 }
 
 /// A 6-vector of two random_vector(rng, scale).
-inline Vector6d random_vector6(Rng& rng, double scale = 1.0)
+COOPDYN_LAZY Vector6d random_vector6(Rng& rng, double scale = 1.0)
 {
     Vector6d result;
     result << random_vector(rng, scale), random_vector(rng, scale);
@@ -78,7 +78,7 @@ inline Vector6d random_vector6(Rng& rng, double scale = 1.0)
 }
 
 /// General (fully coupled) SPD matrix: scale * (B B^T + floor I), B uniform in [-1, 1].
-inline MatrixXd random_spd(Index size, Rng& rng, double scale = 1.0, double floor = 0.5)
+COOPDYN_LAZY MatrixXd random_spd(Index size, Rng& rng, double scale = 1.0, double floor = 0.5)
 {
     const MatrixXd factor = random_matrix(size, size, rng);
     return scale * (factor * factor.transpose() + floor * MatrixXd::Identity(size, size));
@@ -87,7 +87,7 @@ inline MatrixXd random_spd(Index size, Rng& rng, double scale = 1.0, double floo
 /// A rotational inertia of a real rigid body: J = (tr(S) I - S) / 2 for S = random_spd(3, ...),
 /// a random second moment of mass, so the principal moments (s_j + s_k) / 2 satisfy the triangle
 /// inequality (the Model refuses inertias that do not). The same draws as random_spd.
-inline Matrix3d random_body_inertia(Rng& rng, double scale = 1.0, double floor = 0.5)
+COOPDYN_LAZY Matrix3d random_body_inertia(Rng& rng, double scale = 1.0, double floor = 0.5)
 {
     const Matrix3d second_moment = random_spd(3, rng, scale, floor);
     return 0.5 * (second_moment.trace() * Matrix3d::Identity() - second_moment);
@@ -97,7 +97,7 @@ inline Matrix3d random_body_inertia(Rng& rng, double scale = 1.0, double floor =
 // how the draws are assigned to the coefficients, and each keeps the seeded cases of its users.
 
 /// Four standard normal draws in the order x, y, z, w, redrawn while their norm is below 0.1.
-inline Eigen::Quaterniond random_unit_quaternion(Rng& rng)
+COOPDYN_LAZY Eigen::Quaterniond random_unit_quaternion(Rng& rng)
 {
     std::normal_distribution<double> normal(0.0, 1.0);
     Eigen::Vector4d v;
@@ -111,14 +111,14 @@ inline Eigen::Quaterniond random_unit_quaternion(Rng& rng)
 }
 
 /// Four standard normal draws as the coefficients (x, y, z, w), normalised.
-inline Eigen::Quaterniond gaussian_quaternion(Rng& rng)
+COOPDYN_LAZY Eigen::Quaterniond gaussian_quaternion(Rng& rng)
 {
     std::normal_distribution<double> normal(0.0, 1.0);
     return Eigen::Quaterniond(Eigen::Vector4d(normal(rng), normal(rng), normal(rng), normal(rng)).normalized());
 }
 
 /// Four standard normal draws given to the (w, x, y, z) constructor, then normalised.
-inline Eigen::Quaterniond gaussian_quaternion_wxyz(Rng& rng)
+COOPDYN_LAZY Eigen::Quaterniond gaussian_quaternion_wxyz(Rng& rng)
 {
     std::normal_distribution<double> normal(0.0, 1.0);
     Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
@@ -127,14 +127,14 @@ inline Eigen::Quaterniond gaussian_quaternion_wxyz(Rng& rng)
 }
 
 /// Four draws uniform in [-1, 1] as the coefficients (x, y, z, w), normalised (the benchmarks').
-inline Eigen::Quaterniond box_quaternion(Rng& rng)
+COOPDYN_LAZY Eigen::Quaterniond box_quaternion(Rng& rng)
 {
     Eigen::Vector4d coefficients(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
     return Eigen::Quaterniond(coefficients.normalized());
 }
 
 /// Grasp offsets r (3 x N), each column of length 0.2..1 in a random direction: no symmetry.
-inline MatrixXd random_offsets(Index arms, Rng& rng)
+COOPDYN_LAZY MatrixXd random_offsets(Index arms, Rng& rng)
 {
     MatrixXd r(3, arms);
     for (Index i = 0; i < arms; ++i) {
@@ -150,7 +150,7 @@ inline MatrixXd random_offsets(Index arms, Rng& rng)
 /// random_offsets with a common shift of length 1.5, so that any weighted centroid of the offsets
 /// lies well away from the object's centre of mass (|shift| exceeds every |r_i| <= 1, so the
 /// centroid is at least 0.5 away, whatever the weights).
-inline MatrixXd off_centre_offsets(Index arms, Rng& rng)
+COOPDYN_LAZY MatrixXd off_centre_offsets(Index arms, Rng& rng)
 {
     MatrixXd r = random_offsets(arms, rng);
     const Vector3d shift = 1.5 * Vector3d(random_vector(3, rng)).normalized();
@@ -163,7 +163,7 @@ inline MatrixXd off_centre_offsets(Index arms, Rng& rng)
 // =============================================================================================
 
 /// S(a), written out.
-inline Matrix3d hat(const Vector3d& a)
+COOPDYN_LAZY Matrix3d hat(const Vector3d& a)
 {
     Matrix3d s;
     s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
@@ -171,13 +171,13 @@ inline Matrix3d hat(const Vector3d& a)
 }
 
 /// a with S(a) = (m - m^T) / 2 (the axial vector of the skew part).
-inline Vector3d vee_skew_part(const Matrix3d& m)
+COOPDYN_LAZY Vector3d vee_skew_part(const Matrix3d& m)
 {
     return 0.5 * Vector3d(m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1));
 }
 
 /// Rotation matrix of a unit quaternion, written out (not Eigen's toRotationMatrix).
-inline Matrix3d rotation_matrix(const Eigen::Quaterniond& q)
+COOPDYN_LAZY Matrix3d rotation_matrix(const Eigen::Quaterniond& q)
 {
     const double w = q.w(), x = q.x(), y = q.y(), z = q.z();
     Matrix3d r;
@@ -188,14 +188,14 @@ inline Matrix3d rotation_matrix(const Eigen::Quaterniond& q)
 }
 
 /// [cos(angle/2); sin(angle/2) axis]: the rotation by `angle` about the unit vector `axis`.
-inline Eigen::Quaterniond axis_angle(double angle, const Vector3d& axis)
+COOPDYN_LAZY Eigen::Quaterniond axis_angle(double angle, const Vector3d& axis)
 {
     const double s = std::sin(angle / 2);
     return Eigen::Quaterniond(std::cos(angle / 2), s * axis.x(), s * axis.y(), s * axis.z());
 }
 
 /// exp of a world-frame rotation vector, [cos(a/2); sin(a/2) u] (closed form).
-inline Eigen::Quaterniond rotation_exponential(const Vector3d& rotation_vector)
+COOPDYN_LAZY Eigen::Quaterniond rotation_exponential(const Vector3d& rotation_vector)
 {
     const double angle = rotation_vector.norm();
     if (angle == 0.0) {
@@ -205,14 +205,14 @@ inline Eigen::Quaterniond rotation_exponential(const Vector3d& rotation_vector)
 }
 
 /// Angle of the rotation taking b to a (sign-invariant).
-inline double rotation_angle_between(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b)
+COOPDYN_LAZY double rotation_angle_between(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b)
 {
     const Eigen::Quaterniond e = a * b.conjugate();
     return 2.0 * std::atan2(e.vec().norm(), std::abs(e.w()));
 }
 
 /// blkdiag(m I3, J).
-inline Matrix6d block_diagonal_inertia(double mass, const Matrix3d& rotational)
+COOPDYN_LAZY Matrix6d block_diagonal_inertia(double mass, const Matrix3d& rotational)
 {
     Matrix6d result = Matrix6d::Zero();
     result.topLeftCorner<3, 3>() = mass * Matrix3d::Identity();
@@ -221,7 +221,7 @@ inline Matrix6d block_diagonal_inertia(double mass, const Matrix3d& rotational)
 }
 
 /// blkdiag(M_o, M_1, ..., M_N) from the 6x6 object inertia and the 6 x 6N stack.
-inline MatrixXd assemble_inertia(const MatrixXd& object_inertia, const MatrixXd& ee_inertia)
+COOPDYN_LAZY MatrixXd assemble_inertia(const MatrixXd& object_inertia, const MatrixXd& ee_inertia)
 {
     const Index arms = ee_inertia.cols() / 6;
     MatrixXd result = MatrixXd::Zero(6 * (arms + 1), 6 * (arms + 1));
@@ -233,7 +233,7 @@ inline MatrixXd assemble_inertia(const MatrixXd& object_inertia, const MatrixXd&
 }
 
 /// A of (14), docs/model.md, block row i: [[-I3, S(r_i)], [0, -I3]] | I6 in arm i's columns.
-inline MatrixXd literal_constraint_matrix(const MatrixXd& r)
+COOPDYN_LAZY MatrixXd literal_constraint_matrix(const MatrixXd& r)
 {
     const Index arms = r.cols();
     MatrixXd a = MatrixXd::Zero(6 * arms, 6 * (arms + 1));
@@ -247,7 +247,7 @@ inline MatrixXd literal_constraint_matrix(const MatrixXd& r)
 }
 
 /// b of (13), docs/model.md: b_i = [S(w)^2 r_i; 0].
-inline VectorXd literal_constraint_bias(const MatrixXd& r, const Vector3d& omega)
+COOPDYN_LAZY VectorXd literal_constraint_bias(const MatrixXd& r, const Vector3d& omega)
 {
     const Index arms = r.cols();
     VectorXd b = VectorXd::Zero(6 * arms);
@@ -259,7 +259,7 @@ inline VectorXd literal_constraint_bias(const MatrixXd& r, const Vector3d& omega
 }
 
 /// G = [G_1 ... G_N], G_i = [[I3, 0], [S(r_i), I3]].
-inline MatrixXd literal_grasp_matrix(const MatrixXd& r)
+COOPDYN_LAZY MatrixXd literal_grasp_matrix(const MatrixXd& r)
 {
     const Index arms = r.cols();
     MatrixXd g = MatrixXd::Zero(6, 6 * arms);
@@ -278,7 +278,7 @@ struct Weights {
 };
 
 /// W = blkdiag(diag(m*_i I3, J*_i)), 6N x 6N.
-inline MatrixXd weight_matrix(const Weights& weights)
+COOPDYN_LAZY MatrixXd weight_matrix(const Weights& weights)
 {
     const Index arms = weights.mass.size();
     MatrixXd w = MatrixXd::Zero(6 * arms, 6 * arms);
@@ -292,7 +292,7 @@ inline MatrixXd weight_matrix(const Weights& weights)
 /// The weighted least-norm right inverse W G^T (G W G^T)^-1 of a grasp matrix (dense, no
 /// centroid shift): the minimiser of sum_i hbar_i^T (M*_i)^-1 hbar_i subject to G hbar = h_o, a
 /// second method for the weighted inverse (25).
-inline MatrixXd least_norm_right_inverse(const MatrixXd& g, const Weights& weights)
+COOPDYN_LAZY MatrixXd least_norm_right_inverse(const MatrixXd& g, const Weights& weights)
 {
     const MatrixXd w = weight_matrix(weights);
     const MatrixXd gram = g * w * g.transpose();
@@ -312,7 +312,7 @@ double relative_error(const Eigen::MatrixBase<DerivedA>& a, const Eigen::MatrixB
 /// A' of (53): 6(N-1) x 6N relative constraints of arm 1 (index 0) against arm i. From the rigid
 /// grasp (11)-(12) with d_i = r_i - r_1: pdd_i - pdd_1 + S(d_i) wd_1 = w x (w x d_i),
 /// wd_i - wd_1 = 0 (errata E5: 6(N-1) rows).
-inline MatrixXd relative_constraint_matrix(const MatrixXd& r)
+COOPDYN_LAZY MatrixXd relative_constraint_matrix(const MatrixXd& r)
 {
     const Index arms = r.cols();
     MatrixXd a = MatrixXd::Zero(6 * (arms - 1), 6 * arms);
@@ -327,7 +327,7 @@ inline MatrixXd relative_constraint_matrix(const MatrixXd& r)
 }
 
 /// b' of (53), 6(N-1): [w x (w x (r_i - r_1)); 0].
-inline VectorXd relative_constraint_bias(const MatrixXd& r, const Vector3d& omega)
+COOPDYN_LAZY VectorXd relative_constraint_bias(const MatrixXd& r, const Vector3d& omega)
 {
     const Index arms = r.cols();
     VectorXd b = VectorXd::Zero(6 * (arms - 1));
@@ -340,7 +340,7 @@ inline VectorXd relative_constraint_bias(const MatrixXd& r, const Vector3d& omeg
 /// Literal (53): the constraint wrench of the reduced system (end-effectors only, inertia
 /// blkdiag(M_i) given as 6 x 6N) driven by `commanded` (6N), from the KKT conditions of Gauss'
 /// principle: M' xdd - A'^T mu = commanded, A' xdd = b'; h'_int = M' xdd - commanded.
-inline VectorXd literal_internal_wrench(const MatrixXd& ee_inertia, const MatrixXd& r, const Vector3d& omega,
+COOPDYN_LAZY VectorXd literal_internal_wrench(const MatrixXd& ee_inertia, const MatrixXd& r, const Vector3d& omega,
                                         const VectorXd& commanded)
 {
     const Index arms = r.cols();
@@ -425,7 +425,7 @@ struct SampleRanges {
 
 /// The ranges of the analysis tests (apparent impedance, stability): heavier arms with a fixed
 /// inertia scale, moderate gains, light objects.
-inline SampleRanges analysis_ranges()
+COOPDYN_LAZY SampleRanges analysis_ranges()
 {
     SampleRanges ranges;
     ranges.object.mass = {1.0, 3.0};
@@ -439,7 +439,7 @@ inline SampleRanges analysis_ranges()
     return ranges;
 }
 
-inline coopdyn::RigidObject<double> random_object(Rng& rng, const ObjectRanges& ranges)
+COOPDYN_LAZY coopdyn::RigidObject<double> random_object(Rng& rng, const ObjectRanges& ranges)
 {
     coopdyn::RigidObject<double> object;
     object.mass = ranges.mass(rng);
@@ -449,9 +449,9 @@ inline coopdyn::RigidObject<double> random_object(Rng& rng, const ObjectRanges& 
 }
 
 /// random_object with the analysis ranges.
-inline coopdyn::RigidObject<double> random_object(Rng& rng) { return random_object(rng, analysis_ranges().object); }
+COOPDYN_LAZY coopdyn::RigidObject<double> random_object(Rng& rng) { return random_object(rng, analysis_ranges().object); }
 
-inline coopdyn::ImpedanceEndEffector<double> random_impedance_end_effector(Rng& rng, const ImpedanceRanges& ranges)
+COOPDYN_LAZY coopdyn::ImpedanceEndEffector<double> random_impedance_end_effector(Rng& rng, const ImpedanceRanges& ranges)
 {
     coopdyn::ImpedanceEndEffector<double> e;
     e.mass = ranges.mass(rng);
@@ -464,7 +464,7 @@ inline coopdyn::ImpedanceEndEffector<double> random_impedance_end_effector(Rng& 
     return e;
 }
 
-inline coopdyn::ResolvedAccelerationEndEffector<double>
+COOPDYN_LAZY coopdyn::ResolvedAccelerationEndEffector<double>
 random_resolved_acceleration_end_effector(Rng& rng, const ResolvedAccelerationRanges& ranges)
 {
     coopdyn::ResolvedAccelerationEndEffector<double> e;
@@ -527,7 +527,7 @@ template <typename ModelType> ModelType random_model(Index arms, unsigned seed, 
 }
 
 /// A random state: position in [-1, 1]^3, random_unit_quaternion, twist in [-1, 1]^6.
-inline coopdyn::RigidBodyState<double> random_state(Rng& rng)
+COOPDYN_LAZY coopdyn::RigidBodyState<double> random_state(Rng& rng)
 {
     coopdyn::RigidBodyState<double> state;
     state.pose.position = random_vector(3, rng);
@@ -536,7 +536,7 @@ inline coopdyn::RigidBodyState<double> random_state(Rng& rng)
     return state;
 }
 
-inline coopdyn::RigidBodyState<double> make_state(const Vector3d& position, const Eigen::Quaterniond& orientation,
+COOPDYN_LAZY coopdyn::RigidBodyState<double> make_state(const Vector3d& position, const Eigen::Quaterniond& orientation,
                                                   const Vector6d& twist)
 {
     coopdyn::RigidBodyState<double> state;
@@ -547,7 +547,7 @@ inline coopdyn::RigidBodyState<double> make_state(const Vector3d& position, cons
 }
 
 /// A random object equilibrium: position in [-1, 1]^3, random_unit_quaternion, at rest.
-inline coopdyn::RigidBodyState<double> random_equilibrium(Rng& rng)
+COOPDYN_LAZY coopdyn::RigidBodyState<double> random_equilibrium(Rng& rng)
 {
     return make_state(random_vector(3, rng), random_unit_quaternion(rng), Vector6d::Zero());
 }
@@ -569,7 +569,7 @@ struct ArmParameters {
 
 /// N arms with different masses, coupled (non-diagonal) inertias, different gains, random
 /// offsets (random_offsets, drawn first: no symmetry) and random grasp orientations.
-inline std::vector<ArmParameters> random_arms(Index arms, Rng& rng,
+COOPDYN_LAZY std::vector<ArmParameters> random_arms(Index arms, Rng& rng,
                                               const ImpedanceRanges& ranges = analysis_ranges().impedance)
 {
     const MatrixXd offsets = random_offsets(arms, rng);
@@ -592,7 +592,7 @@ inline std::vector<ArmParameters> random_arms(Index arms, Rng& rng,
 /// Three deliberately different arms at asymmetric offsets, with seeded perturbations of the
 /// offsets (+-3 cm) and random grasp orientations; rotated anisotropic inertias unless
 /// `isotropic_inertia`.
-inline std::array<ArmParameters, 3> asymmetric_arms(Rng& rng, bool isotropic_inertia)
+COOPDYN_LAZY std::array<ArmParameters, 3> asymmetric_arms(Rng& rng, bool isotropic_inertia)
 {
     std::uniform_real_distribution<double> jitter(-0.03, 0.03);
     const std::array<double, 3> masses{2.0, 3.5, 5.0};
@@ -625,7 +625,7 @@ inline std::array<ArmParameters, 3> asymmetric_arms(Rng& rng, bool isotropic_ine
 }
 
 /// m_o = 1.5 and a randomly rotated anisotropic J_o_body (principal moments 0.02, 0.035, 0.05).
-inline coopdyn::RigidObject<double> asymmetric_object(Rng& rng)
+COOPDYN_LAZY coopdyn::RigidObject<double> asymmetric_object(Rng& rng)
 {
     coopdyn::RigidObject<double> object;
     object.mass = 1.5;
@@ -677,7 +677,7 @@ struct BeamParameters {
 /// with identity grasp orientations, m_i = 10, J_i = 0.5 I3, d_i = 180, delta_i = 10, k_i = 300,
 /// kappa_i = 50. The paper's idealised thin beam has inertia_yy = 0; simulations that want an
 /// invertible J_o use a small positive value.
-inline BeamParameters section_five_beam(double inertia_yy = 0.0)
+COOPDYN_LAZY BeamParameters section_five_beam(double inertia_yy = 0.0)
 {
     BeamParameters beam;
     beam.object.mass = 1.75;
@@ -709,7 +709,7 @@ ModelType section_five_beam_model(const Vector3d& gravity = coopdyn::standard_gr
 // =============================================================================================
 
 /// The ranges of the benchmarks' random model: every J = B B^T + 0.5 I3 (scale 1).
-inline SampleRanges benchmark_ranges()
+COOPDYN_LAZY SampleRanges benchmark_ranges()
 {
     SampleRanges ranges;
     ranges.object.mass = {1.0, 5.0};
