@@ -42,13 +42,11 @@ template class Simulator<Model<double, Dynamic, ImpedanceEndEffector>>;
 template class Simulator<Model<float, 3, ImpedanceEndEffector>>;
 template class Simulator<Model<double, 2, ResolvedAccelerationEndEffector>>;
 
-namespace detail {
-template class FixedCholesky<double, 3>;
-template class FixedCholesky<double, 6>;
-template class FixedCholesky<float, 6>;
+template class FixedLdlt<double, 3>;
+template class FixedLdlt<double, 6>;
+template class FixedLdlt<float, 6>;
 template class FixedLlt<double, 14>;
 template class FixedLlt<float, 6>;
-}  // namespace detail
 
 }  // namespace coopdyn
 

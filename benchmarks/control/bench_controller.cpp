@@ -42,7 +42,7 @@
 
 #include <coopdyn/control/controller.hpp>
 #include <coopdyn/control/friction.hpp>
-#include <coopdyn/control/qp_solver.hpp>
+#include <coopdyn/numerics/qp_solver.hpp>
 
 #include "controller_cases.hpp"
 

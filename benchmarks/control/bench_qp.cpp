@@ -1,4 +1,4 @@
-// Benchmarks of the dense QP solver (coopdyn/control/qp_solver.hpp, Goldfarb-Idnani) on
+// Benchmarks of the dense QP solver (coopdyn/numerics/qp_solver.hpp, Goldfarb-Idnani) on
 // contact-force QPs like a cooperative controller's per-tick wrench QP:
 //
 //   BM_Cold<C>            QpSolver<double, 3C, 15C>::solve, the same problem every call
@@ -16,7 +16,7 @@
 // residuals <= 1e-9) and skips with an error otherwise. The counters: "steps", the mean number of
 // Goldfarb-Idnani steps per solve, and "active", the mean number of rows active at the optimum.
 
-#include <coopdyn/control/qp_solver.hpp>
+#include <coopdyn/numerics/qp_solver.hpp>
 
 #include <Eigen/Geometry>
 #include <Eigen/QR>

@@ -31,7 +31,8 @@
 
 #include <coopdyn/dynamics/interaction_wrenches.hpp>
 #include <coopdyn/dynamics/udwadia_kalaba.hpp>
-#include <coopdyn/detail/fixed_cholesky.hpp>
+#include <coopdyn/numerics/fixed_ldlt.hpp>
+#include <coopdyn/numerics/pivot_policy.hpp>
 #include <coopdyn/spatial/inertia.hpp>
 #include <coopdyn/spatial/quaternion.hpp>
 #include <coopdyn/spatial/skew.hpp>
@@ -378,13 +379,13 @@ private:
                           const JointVector& tau, const Vector6d& box_wrench, RigidGraspSolution& out) const
     {
         using Matrix6d = Eigen::Matrix<double, 6, 6>;
-        // The right-hand sides side by side, row-major: FixedCholesky::solve_in_place then updates
+        // The right-hand sides side by side, row-major: FixedLdlt::solve_in_place then updates
         // a whole row per step, vectorised across them. One padding column: whole rows of 8 fill
         // the vector registers.
         constexpr int columns = 8, free_column = 6;
-        std::array<coopdyn::detail::FixedCholesky<double, arm_joints>, palms> arm_factor;
+        std::array<coopdyn::FixedLdlt<double, arm_joints>, palms> arm_factor;
         std::array<Eigen::Matrix<double, arm_joints, columns, Eigen::RowMajor>, palms> joint_solution;  // [X_i, qdd0_i, 0]
-        std::array<coopdyn::detail::FixedCholesky<double, 6>, palms> mobility_factor;
+        std::array<coopdyn::FixedLdlt<double, 6>, palms> mobility_factor;
         std::array<Eigen::Matrix<double, 6, columns, Eigen::RowMajor>, palms> palm_solution;  // [Lambda_i, hSigma_i - Lambda_i beta_i, 0]
         for (std::size_t i = 0; i < palms; ++i) {
             if (!arm_factor[i].compute(terms[i].inertia)) {
@@ -405,9 +406,9 @@ private:
             for (Eigen::Index k = 1; k < arm_joints; ++k) {
                 mobility.noalias() += terms[i].jacobian.col(k) * joint_solution[i].row(k).head<6>();
             }
+            // The library's pivot policy (coopdyn/numerics/pivot_policy.hpp, docs/numerics.md).
             if (!mobility_factor[i].compute(mobility) ||
-                mobility_factor[i].pivots().minCoeff() <=
-                    Eigen::NumTraits<double>::dummy_precision() * mobility.diagonal().maxCoeff()) {
+                !coopdyn::regular_pivots(mobility_factor[i].pivots(), mobility.diagonal().maxCoeff())) {
                 return false;  // the palm cannot move in every direction: the arm is singular
             }
             palm_solution[i].leftCols<6>().setIdentity();

@@ -9,4 +9,4 @@
 #include "coopdyn/control/controller_model.hpp"
 #include "coopdyn/control/friction.hpp"
 #include "coopdyn/control/projected_dynamics.hpp"
-#include "coopdyn/control/qp_solver.hpp"
+#include "coopdyn/numerics/qp_solver.hpp"

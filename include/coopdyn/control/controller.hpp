@@ -19,8 +19,10 @@
 #include "coopdyn/control/contact_wrenches.hpp"
 #include "coopdyn/control/controller_model.hpp"
 #include "coopdyn/control/projected_dynamics.hpp"
-#include "coopdyn/control/qp_solver.hpp"
 #include "coopdyn/detail/validation.hpp"
+#include "coopdyn/numerics/fixed_llt.hpp"
+#include "coopdyn/numerics/pivot_policy.hpp"
+#include "coopdyn/numerics/qp_solver.hpp"
 #include "coopdyn/spatial/quaternion.hpp"
 
 #include <limits>
@@ -122,7 +124,7 @@ struct ControllerData {
 
     // ---- workspace -----------------------------------------------------------------------------
     Eigen::Matrix<Scalar, Stack, Internal> internal_basis;  ///< B = blkdiag(R_o, ..., R_o) B_body
-    detail::Llt<JointMatrix> inertia_factor;               ///< M = L L^T: the input check that M is SPD
+    Llt<JointMatrix> inertia_factor;                       ///< M = L L^T: the input check that M is SPD
     InternalMatrix hessian;
     InternalVector gradient;
     Eigen::Matrix<Scalar, Rows, Internal> constraints;    ///< C, constant (ControllerModel::contact_qp_constraints)
@@ -409,7 +411,7 @@ controller_tick(const ControllerModel<Scalar, Arms, Joints, Edges>& model, Contr
         return data.torque;
     }
     data.inertia_factor.compute(input.inertia);
-    if (!detail::regular_cholesky(data.inertia_factor)) {
+    if (!regular_llt(data.inertia_factor)) {  // the pivot policy, numerics/pivot_policy.hpp
         data.input_problem = "inertia (not positive definite)";
         detail::controller_no_control(data, ControlStatus::invalid_input, Eigen::Matrix<Scalar, Joints, 1>::Zero(model.joints()));
         return data.torque;

@@ -25,8 +25,10 @@
 #pragma once
 
 #include "coopdyn/config.hpp"
-#include "coopdyn/detail/fixed_cholesky.hpp"
 #include "coopdyn/model/grasp.hpp"
+#include "coopdyn/numerics/fixed_llt.hpp"
+#include "coopdyn/numerics/householder_qr.hpp"
+#include "coopdyn/numerics/pivot_policy.hpp"
 #include "coopdyn/spatial/inertia.hpp"
 #include "coopdyn/spatial/skew.hpp"
 #include "coopdyn/spatial/spatial_vector.hpp"
@@ -124,92 +126,6 @@ void grasp_rate_transpose_times(const Eigen::MatrixBase<DerivedR>& r, const Vect
         const Vector3<Scalar> rate = omega.cross(Vector3<Scalar>(r.col(i)));
         result.template segment<3>(6 * i) = Vector3<Scalar>(y.template tail<3>()).cross(rate);
         result.template segment<3>(6 * i + 3).setZero();
-    }
-}
-
-/// Squared pivots (a Cholesky factor's diagonal, or a QR's R diagonal: R^T R = A has the same
-/// pivots) of a matrix that is regular to rounding: min > 1000 eps max (the squared pivot ratio
-/// bounds the condition number from below). A rank-deficient Gram matrix factors "successfully"
-/// in floating point with a pivot of rounding size; this catches it (and NaN pivots).
-template <typename DerivedPivots> bool regular_pivots(const Eigen::MatrixBase<DerivedPivots>& squared_pivots) noexcept
-{
-    using Real = typename Eigen::NumTraits<typename DerivedPivots::Scalar>::Real;
-    const Real smallest = squared_pivots.minCoeff();
-    const Real largest = squared_pivots.maxCoeff();
-    return smallest > Real(1000) * Eigen::NumTraits<Real>::epsilon() * largest;
-}
-
-/// A Cholesky factor of a matrix that is regular to rounding (regular_pivots).
-template <typename Factor> bool regular_cholesky(const Factor& factor) noexcept
-{
-    if (factor.info() != Eigen::Success) {
-        return false;
-    }
-    return regular_pivots(factor.matrixLLT().diagonal().cwiseAbs2());
-}
-
-/// Householder QR of A (rows >= cols) in place: A becomes R (upper triangle; zeros below),
-/// reflector k is H_k = I - tau_k v_k v_k^T with v_k stored full-length in reflectors.col(k)
-/// (zeros above row k, 1 at row k), so that A_in = H_0 ... H_{cols-1} [R; 0]. The convention is
-/// Eigen's (makeHouseholder: R_kk = -sign(a_kk) |a_k|), written over whole columns so that every
-/// operation is a fixed-length, vectorised dot or axpy; Eigen's HouseholderQR works on shrinking
-/// dynamic blocks, which cost more than the arithmetic at these sizes.
-template <typename DerivedA, typename DerivedV, typename DerivedTau>
-void householder_qr_in_place(const Eigen::MatrixBase<DerivedA>& A_out, const Eigen::MatrixBase<DerivedV>& reflectors_out,
-                             const Eigen::MatrixBase<DerivedTau>& tau_out) noexcept
-{
-    using Scalar = typename DerivedA::Scalar;
-    auto& A = const_cast<Eigen::MatrixBase<DerivedA>&>(A_out);
-    auto& reflectors = const_cast<Eigen::MatrixBase<DerivedV>&>(reflectors_out);
-    auto& tau = const_cast<Eigen::MatrixBase<DerivedTau>&>(tau_out);
-    const Index rows = A.rows();
-    for (Index k = 0; k < A.cols(); ++k) {
-        auto v = reflectors.col(k);
-        v = A.col(k);
-        v.head(k).setZero();
-        const Scalar c0 = v(k);
-        v(k) = Scalar(0);
-        const Scalar tail_squared_norm = v.squaredNorm();
-        Scalar beta = c0;
-        if (tail_squared_norm <= (std::numeric_limits<Scalar>::min)()) {
-            tau(k) = Scalar(0);  // already triangular in this column: H_k = I
-        } else {
-            beta = std::sqrt(c0 * c0 + tail_squared_norm);
-            if (c0 >= Scalar(0)) {
-                beta = -beta;
-            }
-            v /= c0 - beta;
-            tau(k) = (beta - c0) / beta;
-        }
-        v(k) = Scalar(1);
-        for (Index j = k + 1; j < A.cols(); ++j) {
-            A.col(j) -= (tau(k) * v.dot(A.col(j))) * v;
-        }
-        A.col(k).tail(rows - k - 1).setZero();
-        A(k, k) = beta;
-    }
-}
-
-/// The leading Q.cols() columns of H_0 ... H_{m-1} (householder_qr_in_place), accumulated from
-/// the last reflector: Q <- H_k Q = Q - v_k (tau_k v_k^T Q). H_k changes rows k.. only, so the
-/// columns j < k of H_{k+1} ... H_{m-1} [I; 0] are still e_j and v_k^T e_j = 0: only columns k..
-/// are updated, each by one axpy (a lazy outer product is evaluated coefficient by coefficient).
-/// workspace: 1 x Q.cols().
-template <typename DerivedV, typename DerivedTau, typename DerivedQ, typename DerivedWork>
-void householder_q(const Eigen::MatrixBase<DerivedV>& reflectors, const Eigen::MatrixBase<DerivedTau>& tau,
-                   const Eigen::MatrixBase<DerivedQ>& Q_out, const Eigen::MatrixBase<DerivedWork>& workspace_out) noexcept
-{
-    auto& Q = const_cast<Eigen::MatrixBase<DerivedQ>&>(Q_out);
-    auto& workspace = const_cast<Eigen::MatrixBase<DerivedWork>&>(workspace_out);
-    Q.setIdentity();
-    for (Index k = reflectors.cols() - 1; k >= 0; --k) {
-        const auto v = reflectors.col(k);
-        for (Index j = k; j < Q.cols(); ++j) {
-            workspace(j) = tau(k) * v.dot(Q.col(j));
-        }
-        for (Index j = k; j < Q.cols(); ++j) {
-            Q.col(j) -= workspace(j) * v;
-        }
     }
 }
 
@@ -312,9 +228,9 @@ internal_wrench_basis(const Eigen::MatrixBase<DerivedR>& r)
         Eigen::Matrix<Scalar, internal_wrench_dimension(Arms), 1>::Zero(6 * (arms - 1));
     Eigen::Matrix<Scalar, 1, internal_wrench_dimension(Arms)> workspace =
         Eigen::Matrix<Scalar, 1, internal_wrench_dimension(Arms)>::Zero(6 * (arms - 1));
-    detail::householder_qr_in_place(closed_form, reflectors, tau);
+    householder_qr_in_place(closed_form, reflectors, tau);
     Basis basis(6 * arms, 6 * (arms - 1));
-    detail::householder_q(reflectors, tau, basis, workspace);
+    householder_q(reflectors, tau, basis, workspace);
     return basis;
 }
 
@@ -531,9 +447,9 @@ private:
     JointMatrix reduced_q_;        // [Q1 Q2]
     Eigen::Matrix<Scalar, Free, Joints> free_rows_inertia_;  // Q2^T M
     FreeMatrix free_inertia_;      // M22 = Q2^T M Q2
-    detail::Llt<FreeMatrix> free_inertia_factor_;
+    Llt<FreeMatrix> free_inertia_factor_;
     Eigen::Matrix<Scalar, Free, 6> task_reduced_;  // E = L22^-1 Q2^T Jx^T
-    detail::Llt<Matrix6<Scalar>> task_factor_;
+    Llt<Matrix6<Scalar>> task_factor_;
     mutable Eigen::Matrix<Scalar, Internal, 1> reduced_;  // scratch of the pseudo-inverse products
     StackVector stack_scratch_;
     Vector6<Scalar> object_twist_rate_;  // Jx Mc^-1 (P h - Pdot qdot) - Jxdot qdot
@@ -600,8 +516,8 @@ void ProjectedDynamics<Scalar, Arms, Joints>::compute_basis(const Eigen::MatrixB
 {
     COOPDYN_REQUIRE_SHAPE(r.cols() == arms(), "projected dynamics: r sized for another number of arms");
     detail::closed_form_internal_basis(r, closed_form_basis_);
-    detail::householder_qr_in_place(closed_form_basis_, basis_reflectors_, basis_tau_);
-    detail::householder_q(basis_reflectors_, basis_tau_, internal_basis, basis_workspace_);
+    householder_qr_in_place(closed_form_basis_, basis_reflectors_, basis_tau_);
+    householder_q(basis_reflectors_, basis_tau_, internal_basis, basis_workspace_);
 }
 
 template <typename Scalar, int Arms, int Joints>
@@ -634,9 +550,10 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::evaluate(
     }
 
     // Jc^+ through Jr = B^T J (errata E10), by a Householder QR Jr^T = Q1 R: Jr Jr^T = R^T R, and
-    // R's diagonal is its Cholesky factor's up to signs, so the pivot test of a Cholesky
-    // factorisation of Jr Jr^T applies unchanged. Jc^+ Jc = Jr^T (Jr Jr^T)^-1 Jr = Q1 Q1^T, so
-    // P = I - Q1 Q1^T (L(4)) without squaring Jr's condition number.
+    // R's diagonal is its Cholesky factor's up to signs, so the pivot policy of a Cholesky
+    // factorisation of Jr Jr^T applies unchanged (numerics/pivot_policy.hpp). Jc^+ Jc =
+    // Jr^T (Jr Jr^T)^-1 Jr = Q1 Q1^T, so P = I - Q1 Q1^T (L(4)) without squaring Jr's condition
+    // number.
     if (joints < internal) {
         status = ProjectionStatus::singular_constraint;  // Jr has more rows than columns
         return status;
@@ -644,12 +561,12 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::evaluate(
     const Index free = joints - internal;
     reduced_jacobian_transpose.noalias() = J.transpose().lazyProduct(internal_basis);
     reduced_factor_ = reduced_jacobian_transpose;
-    detail::householder_qr_in_place(reduced_factor_, reduced_reflectors_, reduced_tau_);
-    if (!detail::regular_pivots(reduced_factor_.diagonal().cwiseAbs2())) {
+    householder_qr_in_place(reduced_factor_, reduced_reflectors_, reduced_tau_);
+    if (!regular_triangular_factor(reduced_r())) {
         status = ProjectionStatus::singular_constraint;
         return status;
     }
-    detail::householder_q(reduced_reflectors_, reduced_tau_, reduced_q_, reduced_workspace_);
+    householder_q(reduced_reflectors_, reduced_tau_, reduced_q_, reduced_workspace_);
     const auto q1 = reduced_q_.template leftCols<Internal>(internal);
     const auto q2 = reduced_q_.template rightCols<Free>(free);
     // P = I - Q1 Q1^T = Q2 Q2^T, from the thinner of the two (an output only). Coefficient-based
@@ -682,7 +599,7 @@ ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::evaluate(
     task_reduced_.noalias() = q2.transpose().lazyProduct(object_jacobian.transpose());
     free_inertia_factor_.solve_lower_in_place(task_reduced_);
     task_factor_.compute(task_reduced_.transpose().lazyProduct(task_reduced_));
-    if (!detail::regular_cholesky(task_factor_)) {
+    if (!regular_llt(task_factor_)) {
         status = ProjectionStatus::singular_task;
         return status;
     }

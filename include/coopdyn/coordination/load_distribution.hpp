@@ -28,9 +28,10 @@
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/dynamics/input_check.hpp"
-#include "coopdyn/detail/fixed_cholesky.hpp"
 #include "coopdyn/detail/validation.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
+#include "coopdyn/numerics/fixed_ldlt.hpp"
+#include "coopdyn/numerics/pivot_policy.hpp"
 #include "coopdyn/spatial/inertia.hpp"
 #include "coopdyn/spatial/skew.hpp"
 
@@ -41,17 +42,20 @@
 namespace coopdyn {
 namespace detail {
 
-/// Relative threshold below which J*_o counts as singular: 1e-12 in double, a few dozen ulps for
-/// float (J*_o is a sum of N products, so its rounding noise is a few ulps of its largest
-/// eigenvalue). Shared by the per-call test of the kernels and the per-Model test of
-/// LoadDistribution, so that weights the class accepts are never refused per tick.
+/// Relative threshold below which J*_o counts as singular: the pivot policy's tolerance
+/// (numerics/pivot_policy.hpp, 1000 eps of Scalar's precision), in double for the eigenvalue test
+/// of LoadDistribution. Shared by the per-call test of the kernels (through regular_pivot) and the
+/// per-Model test of LoadDistribution, so that weights the class accepts are never refused per
+/// tick.
 template <typename Scalar> double load_distribution_singularity_tolerance()
 {
-    return std::max(1e-12, 64.0 * epsilon_of<Scalar>());
+    return static_cast<double>(pivot_tolerance_ulps) * epsilon_of<Scalar>();
 }
 
 /// Smallest over largest pivot of the diagonally pivoted L D L^T factorisation of a symmetric 3x3
-/// matrix; not positive when the matrix is not positive definite (or holds NaN).
+/// matrix; not positive when the matrix is not positive definite (or holds NaN). The largest pivot
+/// is the largest diagonal entry (it is chosen first), so the ratio is the pivot policy's
+/// d_min / max_i A_ii (numerics/pivot_policy.hpp).
 ///
 /// Why pivoted: for a symmetric positive semi-definite matrix every pivot lies between the
 /// extreme eigenvalues, and with the largest remaining diagonal entry chosen first the last pivot
@@ -135,8 +139,8 @@ SpatialInertia<typename DerivedR::Scalar> composite_of_weights(const Weights& we
 
 /// The weighted grasp of (25): the composite of the weights about their centroid c (mass m*_o,
 /// rotational inertia J*_o) and the factor of J*_o. `valid` is false when a mass weight is not
-/// positive or J*_o is singular to the relative tolerance load_distribution_singularity_tolerance
-/// (checked with pivot_ratio).
+/// positive or J*_o is singular by the pivot policy (numerics/pivot_policy.hpp; checked on
+/// pivot_ratio).
 ///
 /// The distribution is the rigid motion of that composite body: the object wrench shifted to c
 /// gives it the motion z = (M*_o)^-1 h_c = [f / m*_o; (J*_o)^-1 t_c], and arm i takes
@@ -147,7 +151,7 @@ SpatialInertia<typename DerivedR::Scalar> composite_of_weights(const Weights& we
 template <typename Scalar> struct WeightedGrasp {
     Vector3<Scalar> centroid;                    // c, relative to the object's centre of mass
     CentralInertia<Scalar> composite;            // diag(m*_o I3, J*_o) about c
-    FixedCholesky<Scalar, 3> rotational_factor;  // of J*_o
+    FixedLdlt<Scalar, 3> rotational_factor;      // of J*_o
     bool valid;
 
     template <typename Weights, typename DerivedR>
@@ -163,8 +167,8 @@ template <typename Scalar> struct WeightedGrasp {
                                            composite_of_weights(weights, r, centroid).rotational());
         const Matrix3<Scalar> rotational = composite.rotational().matrix();
         const bool factored = rotational_factor.compute(rotational);
-        valid = positive_masses && factored &&
-                pivot_ratio(rotational) > Scalar(load_distribution_singularity_tolerance<Scalar>());
+        // The pivot policy on the pivoted factorisation (the ratio is already relative: scale 1).
+        valid = positive_masses && factored && regular_pivot(pivot_ratio(rotational), Scalar(1));
     }
 
     /// z = [f / m*_o; (J*_o)^-1 t_c] with t_c = t_o - c x f, for the object wrench h_o at the
@@ -307,8 +311,9 @@ load_distribution_of(const Weights& weights, const Eigen::MatrixBase<DerivedR>& 
 /// \param inertia_weights 3 x 3N, the weights J*_i (symmetric positive semi-definite) side by side.
 /// \throws InvalidModel naming the parameter (and the arm) if the sizes disagree, a mass weight is
 ///         not positive, a J*_i is not symmetric positive semi-definite, or the weights are
-///         degenerate: J*_o singular to a relative 1e-12 (e.g. zero rotational weights with all
-///         grasp points on one line, or two arms).
+///         degenerate: J*_o singular by the pivot policy (relative 1000 eps,
+///         numerics/pivot_policy.hpp; e.g. zero rotational weights with all grasp points on one
+///         line, or two arms).
 template <typename DerivedR, typename DerivedMass, typename DerivedInertia>
 Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime), 6>
 weighted_grasp_inverse(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedMass>& mass_weights,
@@ -333,9 +338,9 @@ weighted_grasp_inverse(const Weights& weights, const Eigen::MatrixBase<DerivedR>
 /// O(N) without forming G+_M. h_i^d is the desired wrench ON arm i (so the arms apply
 /// hbar^d = G+_M h_o^d to the object). Arguments as in weighted_grasp_inverse; object_wrench is
 /// h_o^d (6) at the object's centre of mass. Returns false, leaving `desired_wrenches_out`
-/// untouched, when a mass weight is not positive or J*_o is singular to a relative 1e-12 (the
-/// same test as weighted_grasp_inverse); sizes are checked by debug assertions only. A
-/// Model-level user validates the weights once instead (LoadDistribution).
+/// untouched, when a mass weight is not positive or J*_o is singular by the pivot policy
+/// (relative 1000 eps; the same test as weighted_grasp_inverse); sizes are checked by debug
+/// assertions only. A Model-level user validates the weights once instead (LoadDistribution).
 template <typename DerivedR, typename DerivedMass, typename DerivedInertia, typename DerivedWrench,
           typename DerivedOut>
 bool try_distribute_load(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedMass>& mass_weights,
@@ -409,8 +414,8 @@ public:
     /// \param inertia_weights 3 x 3N symmetric positive semi-definite J*_i.
     /// Throws InvalidModel (naming the parameter and the arm) on invalid weights, and when the
     /// weights are degenerate: J*_o = sum J*_i + sum m*_i S(r'_i) S(r'_i)^T must be positive
-    /// definite (to a relative 1e-12) in every orientation, i.e. the grasp points must not be
-    /// collinear unless sum J*_i is positive definite.
+    /// definite (to the pivot policy's relative 1000 eps) in every orientation, i.e. the grasp
+    /// points must not be collinear unless sum J*_i is positive definite.
     LoadDistribution(const ModelType& model, MassWeights mass_weights, InertiaWeights inertia_weights)
         : mass_weights_(std::move(mass_weights)), inertia_weights_(std::move(inertia_weights))
     {

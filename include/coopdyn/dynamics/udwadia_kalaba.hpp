@@ -20,6 +20,7 @@
 #pragma once
 
 #include "coopdyn/config.hpp"
+#include "coopdyn/numerics/pivot_policy.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
@@ -76,9 +77,9 @@ udwadia_kalaba(const Eigen::MatrixBase<DerivedM>& M, const Eigen::MatrixBase<Der
 /// Cholesky factorisations (n x n and m x m) instead of a complete orthogonal decomposition, gives
 /// lambda directly (the wrench each constraint row carries, e.g. a welded palm's contact wrench),
 /// and with fixed sizes allocates nothing. A rank test replaces the pseudo-inverse: when M is not
-/// positive definite, or S's smallest Cholesky pivot squared is below
-/// NumTraits<Scalar>::dummy_precision() (1e-12 for double) times its largest diagonal entry (A
-/// rank-deficient or nearly so, e.g. an arm at a singularity), it returns false and leaves both
+/// positive definite, or S is singular by the pivot policy (a squared Cholesky pivot at or below
+/// 1000 eps times S's largest diagonal entry, numerics/pivot_policy.hpp: A rank-deficient or
+/// nearly so, e.g. an arm at a singularity), it returns false and leaves both
 /// outputs untouched: use udwadia_kalaba, which handles any rank, then.
 /// \param lambda_out m, the multipliers (h = A^T lambda).
 /// \param acceleration_out n, the constrained accelerations.
@@ -112,13 +113,11 @@ bool try_udwadia_kalaba_full_rank(const Eigen::MatrixBase<DerivedM>& M, const Ei
     ConstraintsTransposed scaled_transposed = A.transpose();
     cholesky.matrixL().solveInPlace(scaled_transposed);
     const ConstraintSpace constraint_space = scaled_transposed.transpose().lazyProduct(scaled_transposed);
+    // S must be regular by the pivot policy (numerics/pivot_policy.hpp): a redundant constraint
+    // leaves S singular up to rounding, with a pivot of rounding size that LLT accepts.
     const Eigen::LLT<ConstraintSpace> constraint_cholesky(constraint_space);
-    if (constraint_cholesky.info() != Eigen::Success) {
-        return false;
-    }
-    const Scalar smallest_pivot = constraint_cholesky.matrixLLT().diagonal().minCoeff();
-    const Scalar largest_diagonal = constraint_space.diagonal().maxCoeff();
-    if (!(smallest_pivot * smallest_pivot > Eigen::NumTraits<Scalar>::dummy_precision() * largest_diagonal)) {
+    if (constraint_cholesky.info() != Eigen::Success ||
+        !regular_pivots(constraint_cholesky.matrixLLT().diagonal().cwiseAbs2(), constraint_space.diagonal().maxCoeff())) {
         return false;
     }
     Vector scaled = h_sigma;

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "coopdyn/config.hpp"
-#include "coopdyn/detail/fixed_cholesky.hpp"
+#include "coopdyn/numerics/fixed_ldlt.hpp"
 #include "coopdyn/spatial/skew.hpp"
 #include "coopdyn/spatial/spatial_vector.hpp"
 #include "coopdyn/spatial/symmetric3.hpp"
@@ -407,7 +407,7 @@ public:
     /// Precondition (asserted in debug builds): X positive definite.
     Motion<Scalar> solve(const Force<Scalar>& force) const noexcept
     {
-        detail::FixedCholesky<Scalar, 6> factor;
+        FixedLdlt<Scalar, 6> factor;
         const bool positive_definite = factor.compute(matrix());
         COOPDYN_ASSERT(positive_definite, "ArticulatedInertia::solve needs a positive definite inertia");
         (void)positive_definite;

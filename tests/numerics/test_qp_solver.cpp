@@ -1,4 +1,4 @@
-// Tests of coopdyn/control/qp_solver.hpp (Goldfarb-Idnani dual active-set QP) against references
+// Tests of coopdyn/numerics/qp_solver.hpp (Goldfarb-Idnani dual active-set QP) against references
 // the solver was not derived from:
 // A. the KKT conditions of min 1/2 x^T H x + g^T x s.t. C x <= d, checked directly on every
 //    solve of thousands of seeded random problems (H up to cond 1e8, many rows active at the
@@ -11,7 +11,9 @@
 // F. no allocation (tests/allocation_counter.hpp), fixed and dynamic sizes.
 #include "../allocation_counter.hpp"
 
-#include "coopdyn/control/qp_solver.hpp"
+#include "coopdyn/numerics/qp_solver.hpp"
+
+#include "coopdyn/control/qp_solver.hpp"  // the deprecated path: must still compile
 
 #include <Eigen/LU>
 #include <Eigen/QR>
