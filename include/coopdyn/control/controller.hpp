@@ -22,6 +22,7 @@
 #include "coopdyn/control/qp_solver.hpp"
 #include "coopdyn/detail/validation.hpp"
 #include "coopdyn/spatial/quaternion.hpp"
+#include "coopdyn/spatial/spatial_vector.hpp"
 
 #include <limits>
 
@@ -209,10 +210,7 @@ template <typename Model, typename Data>
 void controller_grasp(const Model& model, Data& data, const Matrix3<typename Model::Scalar>& object_rotation) noexcept
 {
     using Scalar = typename Model::Scalar;
-    for (Index block = 0; block < 2 * model.arms(); ++block) {
-        data.internal_basis.template middleRows<3>(3 * block).noalias() =
-            object_rotation.lazyProduct(model.body_internal_basis().template middleRows<3>(3 * block));
-    }
+    rotate_stack(object_rotation, model.body_internal_basis(), data.internal_basis);
     for (Index i = 0; i < model.arms(); ++i) {
         data.contact_offsets.col(i).noalias() = object_rotation * model.contact(i).frame.position;
         const Matrix3<Scalar> rotation = object_rotation * model.contact_rotation(i);
@@ -257,9 +255,8 @@ template <typename Model, typename Data> void controller_contact_qp(const Model&
         const auto moment_rows = basis.template middleRows<3>(6 * i + 3);
         const auto bias = data.contact_wrench_bias.template segment<6>(6 * i);
         data.gradient.noalias() += objective.moment_weight * moment_rows.transpose().lazyProduct(bias.template tail<3>());
-        const Matrix3<Scalar> rotation = data.contact_rotations.template middleCols<3>(3 * i);
         Vector6<Scalar> bias_in_contact_frame;
-        bias_in_contact_frame << rotation.transpose() * bias.template head<3>(), rotation.transpose() * bias.template tail<3>();
+        rotate_stack_back(data.contact_rotations.template middleCols<3>(3 * i), bias, bias_in_contact_frame);
         data.bounds.segment(model.row_offset(i), model.row_count(i)) =
             model.contact_frame_bounds().segment(model.row_offset(i), model.row_count(i));
         data.bounds.segment(model.row_offset(i), model.row_count(i)).noalias() -=
@@ -333,11 +330,8 @@ template <typename Model, typename Data> void controller_contact_outputs(const M
     data.contact_wrenches.noalias() += data.dynamics.internal_basis.lazyProduct(data.squeeze);
     data.tightest_margin = std::numeric_limits<Scalar>::infinity();
     for (Index i = 0; i < model.arms(); ++i) {
-        const Matrix3<Scalar> rotation = data.contact_rotations.template middleCols<3>(3 * i);
-        data.contact_frame_wrenches.col(i).template head<3>().noalias() =
-            rotation.transpose() * data.contact_wrenches.template segment<3>(6 * i);
-        data.contact_frame_wrenches.col(i).template tail<3>().noalias() =
-            rotation.transpose() * data.contact_wrenches.template segment<3>(6 * i + 3);
+        rotate_stack_back(data.contact_rotations.template middleCols<3>(3 * i), data.contact_wrenches.template segment<6>(6 * i),
+                          data.contact_frame_wrenches.col(i));
         Scalar margin = std::numeric_limits<Scalar>::infinity();
         for (Index k = model.row_offset(i); k < model.row_offset(i) + model.row_count(i); ++k) {
             const Scalar slack = data.bounds(k) - data.constraints.row(k).dot(data.squeeze);
