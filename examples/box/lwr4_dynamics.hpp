@@ -96,23 +96,6 @@ template <std::size_t N> inline SinCos<N> sin_cos(const std::array<double, N>& a
     return result;
 }
 
-/// R I R^T of a symmetric I (an inertia seen in a rotated frame): R I, then only the six distinct
-/// entries (R I)_a . R_b (45 multiply-adds instead of 54 for the whole product).
-inline coopdyn::Symmetric3<double> rotated_inertia(const Eigen::Matrix3d& inertia, const Eigen::Matrix3d& rotation) noexcept
-{
-    const Eigen::Matrix3d rotated_rows = rotation * inertia;
-    const auto entry = [&](int a, int b) { return rotated_rows.row(a).dot(rotation.row(b)); };
-    return coopdyn::Symmetric3<double>(entry(0, 0), entry(1, 0), entry(2, 0), entry(1, 1), entry(2, 1), entry(2, 2));
-}
-/// The same for a diagonal I = diag(moments): R I is R with scaled columns (27 multiply-adds
-/// in all).
-inline coopdyn::Symmetric3<double> rotated_inertia(const Eigen::Vector3d& moments, const Eigen::Matrix3d& rotation) noexcept
-{
-    const Eigen::Matrix3d rotated_rows = rotation * moments.asDiagonal();
-    const auto entry = [&](int a, int b) { return rotated_rows.row(a).dot(rotation.row(b)); };
-    return coopdyn::Symmetric3<double>(entry(0, 0), entry(1, 0), entry(2, 0), entry(1, 1), entry(2, 1), entry(2, 2));
-}
-
 /// What the rigid plant needs of one arm at one state, world frame.
 struct Lwr4ArmTerms {
     Eigen::Matrix<double, 7, 7> inertia;        ///< M(q)
@@ -136,6 +119,8 @@ public:
             sin_alpha_[i] = std::sin(links_[i].alpha);
             const Eigen::Matrix3d& inertia = links_[i].inertia;
             diagonal_inertia_[i] = inertia(1, 0) == 0.0 && inertia(2, 0) == 0.0 && inertia(2, 1) == 0.0;
+            link_inertia_[i] = coopdyn::Symmetric3<double>(inertia);
+            principal_moments_[i] = inertia.diagonal();
         }
     }
 
@@ -182,9 +167,12 @@ public:
             com_acceleration.col(i) = origin_acceleration + alpha.cross(to_com) + w.cross(w.cross(to_com));
             angular_velocity.col(i) = w;
             angular_acceleration.col(i) = alpha;
-            inertia_world[link_index(i)] = diagonal_inertia_[link_index(i)]
-                                               ? rotated_inertia(Eigen::Vector3d(link.inertia.diagonal()), rotation)
-                                               : rotated_inertia(link.inertia, rotation);
+            // R I R^T in six entries (Symmetric3::rotated, 45 multiply-adds instead of the dense
+            // product's 54); 27 for a diagonal I (R diag(d) R^T).
+            inertia_world[link_index(i)] =
+                diagonal_inertia_[link_index(i)]
+                    ? coopdyn::Symmetric3<double>::rotated_diagonal(principal_moments_[link_index(i)], rotation)
+                    : link_inertia_[link_index(i)].rotated(rotation);
         }
         // The palm: its contact point is fixed in frame 7, axes parallel to it.
         out.palm_rotation = rotation;
@@ -238,6 +226,8 @@ private:
     std::array<Lwr4Link, 7> links_;
     std::array<double, 7> cos_alpha_{}, sin_alpha_{};  // of each link's DH twist
     std::array<bool, 7> diagonal_inertia_{};           // in its DH frame (all of lwr4.hpp's links)
+    std::array<coopdyn::Symmetric3<double>, 7> link_inertia_{};  // about the com, DH axes
+    std::array<Eigen::Vector3d, 7> principal_moments_{};         // its diagonal
     Eigen::Isometry3d base_;
     Eigen::Vector3d gravity_;
     Eigen::Vector3d palm_point_;

@@ -333,7 +333,7 @@ private:
     {
         WeldGeometry weld;
         const Eigen::Matrix3d box_rotation = state.box_orientation.toRotationMatrix();
-        weld.box_inertia_world = rotated_inertia(box_.inertia, box_rotation).matrix();
+        weld.box_inertia_world = coopdyn::Symmetric3<double>(box_.inertia).rotated(box_rotation).matrix();
         const Eigen::Vector3d& w = state.box_angular_velocity;
         for (std::size_t i = 0; i < palms; ++i) {
             const Eigen::Vector3d r = box_rotation * weld_point_[i];

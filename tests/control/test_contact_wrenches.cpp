@@ -38,7 +38,7 @@ struct Bias {
     VectorXd qdd, w0;
 };
 
-Bias library_bias(const Dynamics& d, const JointSpaceSystem& s, const VectorXd& tau_u, const Vector6d& external)
+Bias library_bias(Dynamics& d, const JointSpaceSystem& s, const VectorXd& tau_u, const Vector6d& external)
 {
     Bias bias{VectorXd(s.joints), VectorXd(6 * s.arms)};
     VectorXd scratch(s.joints);

@@ -292,7 +292,7 @@ TEST(ContactQp, ALoadNoSqueezeCanHoldGetsTheLeastViolatingSqueeze)
     s.J = in.jacobian;
     s.Jdot = MatrixXd::Zero(12, 12);
     s.qdot = VectorXd::Zero(12);
-    s.r = data.contact_offsets;
+    s.r = data.dynamics.contact_offsets;
     const auto world = coopdyn_test::solve_physical_model(s, tau, data.external_wrench);
     EXPECT_LT(relative(world.applied, data.contact_wrenches), 1e-12);
 }

@@ -9,10 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -202,7 +204,8 @@ void expect_status(const std::function<void(Input&)>& spoil, coopdyn::ControlSta
     spoil(in);
     const VectorXd tau = coopdyn::controller_tick(model, data, in);
     EXPECT_EQ(data.status, expected) << coopdyn::to_string(data.status);
-    EXPECT_NE(std::string(data.input_problem).find(named_input), std::string::npos) << data.input_problem;
+    EXPECT_NE(std::string(coopdyn::to_string(data.input_problem)).find(named_input), std::string::npos)
+        << coopdyn::to_string(data.input_problem);
     EXPECT_TRUE(tau.allFinite());
     EXPECT_TRUE(data.contact_wrenches.allFinite() && data.squeeze.allFinite());
     // The next good tick recovers.
@@ -256,6 +259,85 @@ TEST(ControllerTick, ASingularArmIsAStatusAndTheTorqueCompensatesTheBias)
     EXPECT_EQ(data.status, coopdyn::ControlStatus::singular);
     EXPECT_NE(data.dynamics.status, coopdyn::ProjectionStatus::ok);  // here: the object cannot move along it
     EXPECT_EQ(tau, in.bias);
+}
+
+/// After a failed tick (invalid_input, singular) no output holds the previous tick's value: all
+/// are reset to zero, the QP marked as not run; the grasp outputs too when the grasp did not run.
+void expect_no_stale_output(const Data& data, const Model& model, bool grasp_ran)
+{
+    EXPECT_FALSE(coopdyn::control_computed(data.status));
+    EXPECT_TRUE(data.motion_torque.isZero(0.0) && data.squeeze_torque.isZero(0.0) && data.posture_torque.isZero(0.0));
+    EXPECT_TRUE(data.pose_error.isZero(0.0) && data.twist_error.isZero(0.0) && data.motion_wrench.isZero(0.0));
+    EXPECT_TRUE(data.external_wrench.isZero(0.0));
+    EXPECT_TRUE(data.contact_wrench_bias.isZero(0.0) && data.contact_wrenches.isZero(0.0));
+    EXPECT_TRUE(data.contact_frame_wrenches.isZero(0.0) && data.friction_margins.isZero(0.0) && data.squeeze.isZero(0.0));
+    EXPECT_EQ(data.tightest_margin, 0.0);
+    EXPECT_EQ(data.tightest_contact, 0);
+    EXPECT_FALSE(data.qp_ran);
+    EXPECT_EQ(data.qp_status, coopdyn::QpStatus::solved);
+    EXPECT_EQ(data.qp_iterations, 0);
+    EXPECT_FALSE(data.fallback_used);
+    EXPECT_EQ(data.fallback_violation, 0.0);
+    EXPECT_TRUE(data.joint_acceleration.isZero(0.0));
+    if (grasp_ran) {  // r_i = R_o p_i with R_o = I, in the projection (their one owner)
+        for (Index i = 0; i < model.arms(); ++i) {
+            EXPECT_EQ(data.dynamics.contact_offsets.col(i), model.contact(i).frame.position);
+        }
+        EXPECT_FALSE(data.contact_rotations.isZero(0.0));
+    } else {
+        EXPECT_TRUE(data.contact_rotations.isZero(0.0));
+    }
+}
+
+TEST(ControllerTick, AFailedTickLeavesNoOutputOfThePreviousTick)
+{
+    const Model model(valid_parameters());
+    Data data(model);
+    Input good = valid_input();
+    good.object.twist << 0.01, -0.02, 0.03, 0.1, -0.05, 0.02;
+    good.object_acceleration << 0.3, 0.1, -0.2, 0.5, 0.0, -0.4;
+    const auto expect_good_tick = [&] {
+        coopdyn::controller_tick(model, data, good);
+        ASSERT_TRUE(coopdyn::control_computed(data.status)) << coopdyn::to_string(data.status);
+        // Every output the failed tick must reset is non-zero here.
+        ASSERT_TRUE(data.qp_ran);
+        ASSERT_FALSE(data.external_wrench.isZero(0.0) || data.contact_wrench_bias.isZero(0.0) || data.pose_error.isZero(0.0) ||
+                     data.twist_error.isZero(0.0) || data.motion_wrench.isZero(0.0) || data.joint_acceleration.isZero(0.0) ||
+                     data.contact_wrenches.isZero(0.0) || data.friction_margins.isZero(0.0) || data.motion_torque.isZero(0.0) ||
+                     data.contact_rotations.isZero(0.0));  // (J = I: no self-motion, tau_n = 0)
+    };
+    expect_good_tick();
+    Input bad = good;
+    bad.object_acceleration(0) = nan;
+    VectorXd tau = coopdyn::controller_tick(model, data, bad);
+    EXPECT_EQ(data.status, coopdyn::ControlStatus::invalid_input);
+    EXPECT_EQ(data.input_problem, coopdyn::ControllerInputProblem::object_acceleration_not_finite);
+    EXPECT_TRUE(tau.isZero(0.0));
+    expect_no_stale_output(data, model, false);
+
+    expect_good_tick();
+    Input singular = good;
+    singular.jacobian.row(8).setZero();
+    tau = coopdyn::controller_tick(model, data, singular);
+    EXPECT_EQ(data.status, coopdyn::ControlStatus::singular);
+    EXPECT_EQ(data.input_problem, coopdyn::ControllerInputProblem::none);
+    EXPECT_EQ(tau, singular.bias);
+    expect_no_stale_output(data, model, true);
+    expect_good_tick();
+}
+
+TEST(ControllerTick, EveryRefusedInputHasItsOwnName)
+{
+    using Problem = coopdyn::ControllerInputProblem;
+    std::vector<std::string> names;
+    for (int k = 0; k <= static_cast<int>(Problem::inertia_not_positive_definite); ++k) {
+        names.emplace_back(coopdyn::to_string(static_cast<Problem>(k)));
+        EXPECT_NE(names.back(), "unknown");
+    }
+    EXPECT_EQ(names.front(), "none");
+    EXPECT_EQ(std::string(coopdyn::to_string(Problem::inertia_not_positive_definite)), "inertia (not positive definite)");
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(std::unique(names.begin(), names.end()), names.end());
 }
 
 TEST(ControllerTickDeathTest, DataOrInputOfAnotherSizeStopsWithAMessage)

@@ -73,7 +73,7 @@ TEST(ProjectedDynamics, KernelsMatchThePrintedFormulasWithPseudoInverses)
             const LiteralProjection literal = literal_projection(s, grasp);
             worst_jx = std::max(worst_jx, relative(coopdyn::object_jacobian(s.r, s.J), grasp.Jx));
             worst_jc = std::max(worst_jc, relative(coopdyn::constraint_jacobian(s.r, s.J), grasp.Jc));
-            const Dynamics d = coopdyn::projected_dynamics(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r);
+            Dynamics d = coopdyn::projected_dynamics(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r);
             ASSERT_EQ(d.status, coopdyn::ProjectionStatus::ok);
             worst_p = std::max(worst_p, relative(d.projector, literal.P));
             worst_mc = std::max(worst_mc, relative(d.constrained_inertia, literal.Mc));
@@ -97,7 +97,7 @@ TEST(ProjectedDynamics, IdentitiesOfTheProjectionAndTheBasis)
     Rng rng(2);
     for (const Case& c : cases) {
         const JointSpaceSystem s = random_joint_space_system(c.arms, c.torso, rng);
-        const Dynamics d = coopdyn::projected_dynamics(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r);
+        Dynamics d = coopdyn::projected_dynamics(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r);
         const MatrixXd& P = d.projector;
         const MatrixXd G = coopdyn_test::literal_grasp_matrix(s.r);
         const MatrixXd B = coopdyn::internal_wrench_basis(s.r);
@@ -147,7 +147,7 @@ TEST(ProjectedDynamics, RateTermsMatchCentralDifferencesAlongAnExplicitMotion)
     double worst_jx = 0, worst_jc = 0, worst_p = 0;
     for (const Case& c : cases) {
         const JointSpaceSystem s = random_joint_space_system(c.arms, c.torso, rng);
-        const Dynamics d = coopdyn::projected_dynamics(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r);
+        Dynamics d = coopdyn::projected_dynamics(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r);
         const Vector3d omega = d.object_twist.tail<3>();
         ASSERT_GT(omega.norm(), 0.1) << "the object must rotate for the test to have teeth";
         const double step = 1e-5;
@@ -178,7 +178,7 @@ TEST(ProjectedDynamics, ObjectObeysEquation15InTheJointSpaceKktSolution)
     for (const Case& c : cases) {
         for (int trial = 0; trial < 3; ++trial) {
             const JointSpaceSystem s = random_joint_space_system(c.arms, c.torso, rng);
-            const Dynamics d = coopdyn::projected_dynamics(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r);
+            Dynamics d = coopdyn::projected_dynamics(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r);
             const Vector6d F = 20.0 * Vector6d(random_vector(6, rng));
             const Vector6d F_x = 20.0 * Vector6d(random_vector(6, rng));
             const VectorXd tau = d.projector * d.object_jacobian.transpose() * F;
@@ -280,7 +280,7 @@ TEST(ProjectedDynamics, SelfMotionProjectionIsTheDynamicallyConsistentNullSpaceP
     double worst = 0.0, worst_motion = 0.0;
     for (const Case& c : cases) {
         const JointSpaceSystem s = random_joint_space_system(c.arms, c.torso, rng);
-        const Dynamics d = coopdyn::projected_dynamics(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r);
+        Dynamics d = coopdyn::projected_dynamics(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r);
         ASSERT_EQ(d.status, coopdyn::ProjectionStatus::ok);
         const MatrixXd M_inverse = s.M.inverse();
         const MatrixXd literal = MatrixXd::Identity(s.joints, s.joints) -

@@ -847,6 +847,16 @@ template <typename Scalar> void expect_spatial_layer_does_not_allocate()
     const Motion<Scalar> twist = Motion<Scalar>::from(random_six(rng, 1.0, 2.0).cast<Scalar>());
     const Force<Scalar> wrench = Force<Scalar>::from(random_six(rng, 5.0, 1.0).cast<Scalar>());
     const coopdyn::Quaternion<Scalar> orientation(random_rotation(rng).cast<Scalar>());
+    // Stacks of K = 3 spatial vectors, sized before the counting window (dynamic and fixed).
+    using DynamicStack = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+    const DynamicStack dynamic_in = DynamicStack::Constant(18, 12, Scalar(0.5));
+    DynamicStack dynamic_out = DynamicStack::Zero(18, 12);
+    const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> dynamic_vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>::Ones(18);
+    Eigen::Matrix<Scalar, Eigen::Dynamic, 1> dynamic_vector_out = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>::Zero(18);
+    Eigen::Matrix<Scalar, 3, Eigen::Dynamic> dynamic_rotations(3, 9);
+    dynamic_rotations << rotation, rotation.transpose(), rotation;
+    Eigen::Matrix<Scalar, 18, 12> fixed_stack = Eigen::Matrix<Scalar, 18, 12>::Constant(Scalar(0.25));
+    const Eigen::Matrix<Scalar, 3, 9> fixed_rotations = dynamic_rotations;
     Scalar checksum(0);
     const allocation_counter::Allocations allocations = allocation_counter::count_allocations([&] {
         for (int tick = 0; tick < 10; ++tick) {
@@ -862,6 +872,17 @@ template <typename Scalar> void expect_spatial_layer_does_not_allocate()
             const Force<Scalar> shifted = wrench.shifted(r) - wrench;
             checksum += moved.dot(shifted) + (Scalar(2) * moved).vector().sum() + (-shifted).vector().sum();
             checksum += coopdyn::centripetal_acceleration(r, twist.angular).sum();
+            // Rotations of spatial vectors and of stacks
+            checksum += twist.rotated(rotation).dot(wrench.rotated_back(rotation)) +
+                        twist.rotated_back(rotation).linear.sum() + wrench.rotated(rotation).angular.sum();
+            coopdyn::rotate_stack(rotation, dynamic_in, dynamic_out);
+            coopdyn::rotate_stack_back(rotation, dynamic_out, dynamic_out);
+            coopdyn::rotate_stack_per_block(dynamic_rotations, dynamic_vector, dynamic_vector_out);
+            coopdyn::rotate_stack_per_block_back(dynamic_rotations, dynamic_out, dynamic_out);
+            coopdyn::rotate_stack(rotation, fixed_stack, fixed_stack);
+            coopdyn::rotate_stack_per_block_back(fixed_rotations, fixed_stack, fixed_stack);
+            checksum += dynamic_out.sum() + dynamic_vector_out.sum() + fixed_stack.sum();
+            checksum += s.rotated_back(rotation).trace() + Symmetric3<Scalar>::rotated_diagonal(r, rotation).trace();
             // SpatialInertia
             SpatialInertia<Scalar> composite = SpatialInertia<Scalar>::from_centre(spatial.mass(), r, s);
             composite.add_shifted(spatial, r);

@@ -260,6 +260,231 @@ TYPED_TEST(SpatialVectorTyped, CentripetalAccelerationIsOmegaCrossOmegaCrossR)
     }
 }
 
+// --- Rotation: diag(R, R), blkdiag(R, ..., R) and blkdiag(R_1, R_1, ..., R_K, R_K) ---------------
+
+/// blkdiag(R_1, ..., R_n) of the 3x3 blocks given (as columns of `rotations`, 3 x 3n), written out.
+Eigen::MatrixXd literal_block_diagonal(const Eigen::MatrixXd& rotations)
+{
+    const Eigen::Index n = rotations.cols() / 3;
+    Eigen::MatrixXd result = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+    for (Eigen::Index b = 0; b < n; ++b) {
+        result.block<3, 3>(3 * b, 3 * b) = rotations.block<3, 3>(0, 3 * b);
+    }
+    return result;
+}
+
+/// [R, R, ..., R] (n copies) and [R_1, R_1, ..., R_K, R_K]: the 3x3 blocks of the references above.
+Eigen::MatrixXd repeated(const Eigen::MatrixXd& rotations, Eigen::Index copies)
+{
+    Eigen::MatrixXd result(3, rotations.cols() * copies);
+    for (Eigen::Index b = 0; b < rotations.cols() / 3; ++b) {
+        for (Eigen::Index c = 0; c < copies; ++c) {
+            result.block<3, 3>(0, 3 * (copies * b + c)) = rotations.block<3, 3>(0, 3 * b);
+        }
+    }
+    return result;
+}
+
+/// rows x cols uniform in [-scale, scale], each entry representable in Scalar.
+template <typename Scalar> Eigen::MatrixXd random_matrix(std::mt19937& rng, Eigen::Index rows, Eigen::Index cols, double scale)
+{
+    std::uniform_real_distribution<double> uniform(-scale, scale);
+    Eigen::MatrixXd result(rows, cols);
+    for (Eigen::Index k = 0; k < result.size(); ++k) {
+        result(k) = round_to<Scalar>(uniform(rng));
+    }
+    return result;
+}
+
+/// max over columns of |value - reference| / |in| (column norms): the error of a rotated stack
+/// relative to what was rotated.
+double column_error(const Eigen::MatrixXd& value, const Eigen::MatrixXd& reference, const Eigen::MatrixXd& in)
+{
+    double worst = 0.0;
+    for (Eigen::Index j = 0; j < in.cols(); ++j) {
+        worst = std::max(worst, (value.col(j) - reference.col(j)).norm() / in.col(j).norm());
+    }
+    return worst;
+}
+
+TYPED_TEST(SpatialVectorTyped, RotatedIsTheLiteralBlockDiagonalRotation)
+{
+    using Scalar = TypeParam;
+    std::mt19937 rng(31);
+    double worst = 0.0;
+    for (int trial = 0; trial < 50; ++trial) {
+        const Matrix3d rotation = rounded<Scalar>(coopdyn_test::random_rotation(rng));
+        const Vector6d six = rounded<Scalar>(random_six(rng, 3.0, 0.5));
+        const Vector6d other = rounded<Scalar>(random_six(rng, 0.2, 4.0));
+        const Vector3d r = rounded<Scalar>(random_vector(rng, 0.7));
+        const Matrix6d block = literal_block_diagonal(repeated(rotation, 2));
+        const coopdyn::Matrix3<Scalar> rotation_s = rotation.cast<Scalar>();
+        const Motion<Scalar> motion = Motion<Scalar>::from(six.cast<Scalar>());
+        const Force<Scalar> force = Force<Scalar>::from(six.cast<Scalar>());
+        // [R v; R w] and [R^T v; R^T w] against the 6x6 products, for both kinds of vector.
+        for (const double error : {relative_error(to_double(motion.rotated(rotation_s)), block * six),
+                                   relative_error(to_double(force.rotated(rotation_s)), block * six),
+                                   relative_error(to_double(motion.rotated_back(rotation_s)), block.transpose() * six),
+                                   relative_error(to_double(force.rotated_back(rotation_s)), block.transpose() * six)}) {
+            worst = std::max(worst, error);
+            EXPECT_LT(error, 4.0 * epsilon<Scalar>());
+        }
+        // Back and forth (R orthogonal to the rounding of Scalar).
+        EXPECT_LT(relative_error(to_double(motion.rotated(rotation_s).rotated_back(rotation_s)), six), 8.0 * epsilon<Scalar>());
+        EXPECT_LT(relative_error(to_double(force.rotated_back(rotation_s).rotated(rotation_s)), six), 8.0 * epsilon<Scalar>());
+        // Power is frame-independent: (R6 xdot) . (R6 h) = xdot . h.
+        const Force<Scalar> wrench = Force<Scalar>::from(other.cast<Scalar>());
+        EXPECT_NEAR(static_cast<double>(motion.rotated(rotation_s).dot(wrench.rotated(rotation_s))), six.dot(other),
+                    16.0 * epsilon<Scalar>() * six.norm() * other.norm());
+        // Rotation commutes with the change of reference point: R6 G(r) = G(R r) R6 ((24) in a
+        // turned frame), so shifting then turning equals turning then shifting by R r.
+        const coopdyn::Vector3<Scalar> r_s = r.cast<Scalar>();
+        const coopdyn::Vector3<Scalar> turned_r = rotation_s * r_s;
+        const double shift_scale = six.norm() * (1.0 + r.norm());
+        EXPECT_LT((to_double(force.shifted(r_s).rotated(rotation_s)) - to_double(force.rotated(rotation_s).shifted(turned_r))).norm(),
+                  16.0 * epsilon<Scalar>() * shift_scale);
+        EXPECT_LT(
+            (to_double(motion.at_point(r_s).rotated(rotation_s)) - to_double(motion.rotated(rotation_s).at_point(turned_r))).norm(),
+            16.0 * epsilon<Scalar>() * shift_scale);
+    }
+    // The identity changes nothing, bit for bit.
+    const Vector6d six = rounded<Scalar>(random_six(rng, 1.0, 1.0));
+    const coopdyn::Matrix3<Scalar> identity = coopdyn::Matrix3<Scalar>::Identity();
+    EXPECT_EQ(Force<Scalar>::from(six.cast<Scalar>()).rotated(identity).vector(), six.cast<Scalar>());
+    EXPECT_EQ(Motion<Scalar>::from(six.cast<Scalar>()).rotated_back(identity).vector(), six.cast<Scalar>());
+    ::testing::Test::RecordProperty("worst_relative_error_over_eps", scientific(worst / epsilon<Scalar>()));
+}
+
+/// rotate_stack(_back) and rotate_stack_per_block(_back) on K stacked 6-vectors and on 6K x m
+/// matrices, sizes fixed (Fixed) or dynamic, against the literal 6K x 6K block-diagonal products.
+template <typename Scalar, int K, bool Fixed> double check_stack_rotations(std::mt19937& rng)
+{
+    constexpr int Rows = Fixed ? 6 * K : Eigen::Dynamic;
+    constexpr int Columns = Fixed ? 6 * K - 5 : Eigen::Dynamic;  // the internal-wrench basis' 6(K-1), and one more
+    using Stack = Eigen::Matrix<Scalar, Rows, 1>;
+    using StackMatrix = Eigen::Matrix<Scalar, Rows, Columns>;
+    using Rotations = Eigen::Matrix<Scalar, 3, Fixed ? 3 * K : Eigen::Dynamic>;
+    const double tolerance = 4.0 * epsilon<Scalar>();
+    double worst = 0.0;
+    const auto check = [&](const auto& value, const Eigen::MatrixXd& reference, const Eigen::MatrixXd& in) {
+        const double error = column_error(value.template cast<double>(), reference, in);
+        worst = std::max(worst, error);
+        EXPECT_LT(error, tolerance) << "K " << K << (Fixed ? " fixed" : " dynamic");
+    };
+    for (int trial = 0; trial < 10; ++trial) {
+        const Matrix3d rotation = rounded<Scalar>(coopdyn_test::random_rotation(rng));
+        Eigen::MatrixXd rotations(3, 3 * K);
+        for (int k = 0; k < K; ++k) {
+            rotations.block<3, 3>(0, 3 * k) = rounded<Scalar>(coopdyn_test::random_rotation(rng));
+        }
+        const Eigen::MatrixXd same = literal_block_diagonal(repeated(rotation, 2 * K));
+        const Eigen::MatrixXd each = literal_block_diagonal(repeated(rotations, 2));
+        const Eigen::MatrixXd stack = random_matrix<Scalar>(rng, 6 * K, 1, 5.0);
+        const Eigen::MatrixXd matrix = random_matrix<Scalar>(rng, 6 * K, 6 * K - 5, 1.0);
+
+        const coopdyn::Matrix3<Scalar> rotation_s = rotation.cast<Scalar>();
+        const Rotations rotations_s = rotations.cast<Scalar>();
+        const Stack stack_s = stack.cast<Scalar>();
+        const StackMatrix matrix_s = matrix.cast<Scalar>();
+        Stack out = Stack::Zero(6 * K);
+        StackMatrix out_matrix = StackMatrix::Zero(6 * K, 6 * K - 5);
+
+        coopdyn::rotate_stack(rotation_s, stack_s, out);
+        check(out, same * stack, stack);
+        coopdyn::rotate_stack(rotation_s, matrix_s, out_matrix);
+        check(out_matrix, same * matrix, matrix);
+        // In place, bit for bit what the out-of-place call gives.
+        StackMatrix in_place = matrix_s;
+        coopdyn::rotate_stack(rotation_s, in_place, in_place);
+        EXPECT_EQ(in_place, out_matrix);
+        coopdyn::rotate_stack_back(rotation_s, stack_s, out);
+        check(out, same.transpose() * stack, stack);
+        coopdyn::rotate_stack_back(rotation_s, matrix_s, out_matrix);
+        check(out_matrix, same.transpose() * matrix, matrix);
+        coopdyn::rotate_stack_back(rotation_s, in_place, in_place);  // back to the start (R orthogonal to rounding)
+        EXPECT_LT(column_error(in_place.template cast<double>(), matrix, matrix), 8.0 * epsilon<Scalar>());
+
+        coopdyn::rotate_stack_per_block(rotations_s, stack_s, out);
+        check(out, each * stack, stack);
+        coopdyn::rotate_stack_per_block(rotations_s, matrix_s, out_matrix);
+        check(out_matrix, each * matrix, matrix);
+        coopdyn::rotate_stack_per_block_back(rotations_s, stack_s, out);
+        check(out, each.transpose() * stack, stack);
+        coopdyn::rotate_stack_per_block_back(rotations_s, matrix_s, out_matrix);
+        check(out_matrix, each.transpose() * matrix, matrix);
+        in_place = matrix_s;
+        coopdyn::rotate_stack_per_block_back(rotations_s, in_place, in_place);
+        EXPECT_EQ(in_place, out_matrix);
+
+        // Each block of the stack is Force::rotated of that block; into a segment of a longer
+        // stack (expressions in and out).
+        Eigen::Matrix<Scalar, Eigen::Dynamic, 1> longer = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>::Zero(6 * K + 12);
+        coopdyn::rotate_stack(rotation_s, stack_s, longer.segment(6, 6 * K));
+        for (int k = 0; k < K; ++k) {
+            EXPECT_EQ(longer.template segment<6>(6 + 6 * k),
+                      Force<Scalar>::from(stack_s.template segment<6>(6 * k)).rotated(rotation_s).vector());
+        }
+        EXPECT_TRUE(longer.template head<6>().isZero(0) && longer.template tail<6>().isZero(0));
+    }
+    return worst;
+}
+
+TYPED_TEST(SpatialVectorTyped, StackRotationsAreTheLiteralBlockDiagonalProducts)
+{
+    using Scalar = TypeParam;
+    std::mt19937 rng(32);
+    const double worst = std::max({check_stack_rotations<Scalar, 1, true>(rng), check_stack_rotations<Scalar, 2, true>(rng),
+                                   check_stack_rotations<Scalar, 3, true>(rng), check_stack_rotations<Scalar, 4, true>(rng),
+                                   check_stack_rotations<Scalar, 1, false>(rng), check_stack_rotations<Scalar, 2, false>(rng),
+                                   check_stack_rotations<Scalar, 3, false>(rng), check_stack_rotations<Scalar, 4, false>(rng)});
+    ::testing::Test::RecordProperty("worst_relative_error_over_eps", scientific(worst / epsilon<Scalar>()));
+}
+
+TEST(SpatialVector, AutodiffDerivativesOfTheRotationsAreExact)
+{
+    // x -> R6 x is linear: its Jacobian is blkdiag(R, R). And along R(theta) = exp(theta S(u)) R_0,
+    // d/dtheta (R x) = S(u) R x: with R's entries carrying dR/dtheta = S(u) R, the autodiff
+    // derivative of rotated(R) is [S(u) R v; S(u) R w], of rotated_back(R) [-R^T S(u) v; ...].
+    std::mt19937 rng(33);
+    for (int trial = 0; trial < 5; ++trial) {
+        const Matrix3d rotation = coopdyn_test::random_rotation(rng);
+        const Vector3d axis = random_vector(rng).normalized();
+        const Vector6d six = random_six(rng, 2.0, 1.0);
+        coopdyn::Vector6<AutoDiff> six_ad;
+        for (int k = 0; k < 6; ++k) {
+            six_ad(k) = AutoDiff(six(k), 7, k);
+        }
+        const Matrix3d rate = literal_skew(axis) * rotation;
+        coopdyn::Matrix3<AutoDiff> rotation_ad;
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) {
+                rotation_ad(i, j) = AutoDiff(rotation(i, j), Eigen::VectorXd::Unit(7, 6) * rate(i, j));
+            }
+        }
+        const Force<AutoDiff> turned = Force<AutoDiff>::from(six_ad).rotated(rotation_ad);
+        const Motion<AutoDiff> back = Motion<AutoDiff>::from(six_ad).rotated_back(rotation_ad);
+        Eigen::Matrix<double, 6, 7> turned_jacobian, back_jacobian;
+        for (int i = 0; i < 6; ++i) {
+            turned_jacobian.row(i) = turned.vector()(i).derivatives().transpose();
+            back_jacobian.row(i) = back.vector()(i).derivatives().transpose();
+        }
+        const Matrix6d block = literal_block_diagonal(repeated(rotation, 2));
+        EXPECT_LT((turned_jacobian.leftCols<6>() - block).norm(), 1e-15);
+        EXPECT_LT((back_jacobian.leftCols<6>() - block.transpose()).norm(), 1e-15);
+        const Matrix6d block_rate = literal_block_diagonal(repeated(rate, 2));
+        EXPECT_LT((turned_jacobian.col(6) - block_rate * six).norm(), 1e-14 * six.norm());
+        EXPECT_LT((back_jacobian.col(6) - block_rate.transpose() * six).norm(), 1e-14 * six.norm());
+        // The stacked form, on a dynamic-size autodiff stack of two.
+        Eigen::Matrix<AutoDiff, Eigen::Dynamic, 1> stack(12), stack_out(12);
+        stack << six_ad, six_ad;
+        coopdyn::rotate_stack(rotation_ad, stack, stack_out);
+        for (int i = 0; i < 12; ++i) {
+            EXPECT_EQ(stack_out(i).value(), turned.vector()(i % 6).value());
+            EXPECT_EQ(stack_out(i).derivatives(), turned.vector()(i % 6).derivatives());
+        }
+    }
+}
+
 // --- Finite differences of rigid motions ---------------------------------------------------------
 
 TEST(SpatialVector, AtPointIsTheVelocityOfTheBodyPoint_FiniteDifferences)

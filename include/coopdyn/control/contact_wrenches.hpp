@@ -27,14 +27,15 @@ namespace coopdyn {
 /// \brief The contact-wrench bias w_0 = -G^+ F_x - eta (6K) of L(23)-(24) with errata E11: the
 /// wrenches the hands apply to the object under tau = tau_u (no squeeze) for the external wrench
 /// F_x, and the joint acceleration qdd that goes with it.
-/// \param dynamics computed at this configuration (status ok) from the same M and h.
+/// \param dynamics computed at this configuration (status ok) from the same M and h (non-const:
+/// its products use its workspace).
 /// \param tau_u Q, the motion torque (L(16): P Jx^T F; anything with P tau_u = tau_u).
 /// \param external_wrench F_x (6), on the object at its centre, {w}.
 /// \param joint_acceleration_out Q, qdd; \param bias_out 6K, w_0; \param joint_scratch Q, caller
 /// storage so that nothing allocates. noexcept.
 template <typename Scalar, int Arms, int Joints, typename DerivedM, typename DerivedH, typename DerivedTau,
           typename DerivedWrench, typename DerivedAcceleration, typename DerivedBias, typename DerivedScratch>
-void contact_wrench_bias(const ProjectedDynamics<Scalar, Arms, Joints>& dynamics, const Eigen::MatrixBase<DerivedM>& M,
+void contact_wrench_bias(ProjectedDynamics<Scalar, Arms, Joints>& dynamics, const Eigen::MatrixBase<DerivedM>& M,
                          const Eigen::MatrixBase<DerivedH>& h, const Eigen::MatrixBase<DerivedTau>& tau_u,
                          const Eigen::MatrixBase<DerivedWrench>& external_wrench,
                          const Eigen::MatrixBase<DerivedAcceleration>& joint_acceleration_out,

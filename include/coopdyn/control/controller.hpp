@@ -24,6 +24,7 @@
 #include "coopdyn/numerics/pivot_policy.hpp"
 #include "coopdyn/numerics/qp_solver.hpp"
 #include "coopdyn/spatial/quaternion.hpp"
+#include "coopdyn/spatial/spatial_vector.hpp"
 
 #include <limits>
 
@@ -63,6 +64,64 @@ inline const char* to_string(ControlStatus status) noexcept
     return "unknown";
 }
 
+/// Whether a tick with this status computed the control: every output of ControllerData is this
+/// tick's (ok, friction_infeasible, qp_failed). For invalid_input and singular the tick computed
+/// only `torque`; every other output is reset (docs/control.md, "After a failed tick").
+inline bool control_computed(ControlStatus status) noexcept
+{
+    return status == ControlStatus::ok || status == ControlStatus::friction_infeasible ||
+           status == ControlStatus::qp_failed;
+}
+
+/// \brief The input a tick refused (ControllerData::input_problem): the first one found, in this
+/// order; `none` when every input passed. Checked before anything is computed.
+enum class ControllerInputProblem {
+    none,
+    inertia_not_finite,
+    bias_not_finite,
+    jacobian_not_finite,
+    jacobian_rate_qdot_not_finite,
+    positions_not_finite,
+    velocities_not_finite,
+    object_position_not_finite,
+    object_orientation_not_unit,
+    object_twist_not_finite,
+    object_acceleration_not_finite,
+    desired_position_not_finite,
+    desired_orientation_not_unit,
+    desired_twist_not_finite,
+    desired_acceleration_not_finite,
+    posture_not_finite,
+    /// M is finite but its Cholesky factorisation failed (not symmetric positive definite).
+    inertia_not_positive_definite,
+};
+
+/// The refused input by its ControllerInput name and what is wrong with it, e.g.
+/// "object_acceleration (not finite)", "inertia (not positive definite)"; "none".
+inline const char* to_string(ControllerInputProblem problem) noexcept
+{
+    switch (problem) {
+    case ControllerInputProblem::none: return "none";
+    case ControllerInputProblem::inertia_not_finite: return "inertia (not finite)";
+    case ControllerInputProblem::bias_not_finite: return "bias (not finite)";
+    case ControllerInputProblem::jacobian_not_finite: return "jacobian (not finite)";
+    case ControllerInputProblem::jacobian_rate_qdot_not_finite: return "jacobian_rate_qdot (not finite)";
+    case ControllerInputProblem::positions_not_finite: return "positions (not finite)";
+    case ControllerInputProblem::velocities_not_finite: return "velocities (not finite)";
+    case ControllerInputProblem::object_position_not_finite: return "object.pose.position (not finite)";
+    case ControllerInputProblem::object_orientation_not_unit: return "object.pose.orientation (not unit)";
+    case ControllerInputProblem::object_twist_not_finite: return "object.twist (not finite)";
+    case ControllerInputProblem::object_acceleration_not_finite: return "object_acceleration (not finite)";
+    case ControllerInputProblem::desired_position_not_finite: return "desired_pose.position (not finite)";
+    case ControllerInputProblem::desired_orientation_not_unit: return "desired_pose.orientation (not unit)";
+    case ControllerInputProblem::desired_twist_not_finite: return "desired_twist (not finite)";
+    case ControllerInputProblem::desired_acceleration_not_finite: return "desired_acceleration (not finite)";
+    case ControllerInputProblem::posture_not_finite: return "posture (not finite)";
+    case ControllerInputProblem::inertia_not_positive_definite: return "inertia (not positive definite)";
+    }
+    return "unknown";
+}
+
 /// \brief Everything a controller tick computes (outputs first) and the buffers it needs, sized
 /// once from the model: controller_tick allocates nothing (fixed sizes, and Dynamic ones after
 /// construction).
@@ -85,12 +144,13 @@ struct ControllerData {
 
     explicit ControllerData(const Model& model);
 
-    Index arms() const noexcept { return contact_offsets.cols(); }
+    Index arms() const noexcept { return friction_margins.size(); }
     Index joints() const noexcept { return torque.size(); }
 
     // ---- outputs of the last tick -------------------------------------------------------------
     ControlStatus status = ControlStatus::ok;
-    const char* input_problem = "none";  ///< the refused input when status is invalid_input
+    /// The refused input when status is invalid_input, otherwise none (to_string names it).
+    ControllerInputProblem input_problem = ControllerInputProblem::none;
     JointVector torque;                  ///< tau = tau_u + tau_c + tau_n, what to send to the arms
     JointVector motion_torque;           ///< tau_u = P Jx^T F, L(16)
     JointVector squeeze_torque;          ///< tau_c = J^T B z*
@@ -108,22 +168,25 @@ struct ControllerData {
     Scalar tightest_margin = Scalar(0);  ///< the smallest of friction_margins (< 0: a row is violated)
     Index tightest_contact = 0;          ///< the contact it belongs to
     InternalVector squeeze;              ///< z*, the internal-wrench coordinates (N, N m; B orthonormal)
-    QpStatus qp_status = QpStatus::solved;  ///< of the contact QP proper
-    int qp_iterations = 0;               ///< its steps (plus the fallback's when it ran)
+    bool qp_ran = false;                 ///< the contact QP ran this tick (false after a failed tick)
+    QpStatus qp_status = QpStatus::solved;  ///< of the contact QP proper when qp_ran; solved (none failed) otherwise
+    int qp_iterations = 0;               ///< its steps (plus the fallback's when it ran); 0 when !qp_ran
     bool fallback_used = false;          ///< the least-violating fallback supplied z*
     Scalar fallback_violation = Scalar(0);  ///< s, the worst row's violation under the fallback (>= 0)
     /// qdd under tau_u + tau_c (tau_c changes none) with the estimated F_x; the posture torque adds
     /// the self-motion M^-1 tau_n, which moves neither the object nor the contacts.
     JointVector joint_acceleration;
-    Eigen::Matrix<Scalar, 3, Arms> contact_offsets;        ///< r_i = R_o p_i, {w}
-    Eigen::Matrix<Scalar, 3, times_three(Arms)> contact_rotations;  ///< [R_c1 ... R_cK], {c_i} to {w}
-    /// Jx, Lambda_c, hc, B, Jr^T, ... of this tick; the tick does not form P and Mc
-    /// (dynamics.form_projection_matrices is false: set it to read dynamics.projector and
-    /// dynamics.constrained_inertia).
+    Eigen::Matrix<Scalar, 3, times_three(Arms)> contact_rotations;  ///< [R_c1 ... R_cK], {c_i} to {w} (zero after invalid_input)
+    /// Jx, Lambda_c, hc, Jr^T, ... of this tick, and the grasp it was computed for: the contact
+    /// offsets r_i = R_o p_i (dynamics.contact_offsets, {w}) and the internal-wrench basis
+    /// B = blkdiag(R6, ..., R6) B_body (dynamics.internal_basis), which the tick writes there
+    /// directly (one owner). The tick does not form P and Mc (dynamics.form_projection_matrices
+    /// is false: set it to read dynamics.projector and dynamics.constrained_inertia). After
+    /// invalid_input the projection did not run (status marks it): its outputs are the last
+    /// computed ones.
     ProjectedDynamics<Scalar, Arms, Joints> dynamics;
 
     // ---- workspace -----------------------------------------------------------------------------
-    Eigen::Matrix<Scalar, Stack, Internal> internal_basis;  ///< B = blkdiag(R_o, ..., R_o) B_body
     Llt<JointMatrix> inertia_factor;                       ///< M = L L^T: the input check that M is SPD
     InternalMatrix hessian;
     InternalVector gradient;
@@ -155,10 +218,8 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       friction_margins(ArmVector::Zero(model.arms())),
       squeeze(InternalVector::Zero(6 * (model.arms() - 1))),
       joint_acceleration(JointVector::Zero(model.joints())),
-      contact_offsets(Eigen::Matrix<Scalar, 3, Arms>::Zero(3, model.arms())),
       contact_rotations(Eigen::Matrix<Scalar, 3, times_three(Arms)>::Zero(3, 3 * model.arms())),
       dynamics(model.arms(), model.joints()),
-      internal_basis(model.body_internal_basis()),
       inertia_factor(model.joints()),
       hessian(InternalMatrix::Zero(6 * (model.arms() - 1), 6 * (model.arms() - 1))),
       gradient(InternalVector::Zero(6 * (model.arms() - 1))),
@@ -183,40 +244,40 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
 
 namespace detail {
 
-/// The first per-tick input that is not finite (or a quaternion that is not unit), by name; "none".
+/// The first per-tick input that is not finite (or a quaternion that is not unit); none.
 template <typename Scalar, int Arms, int Joints>
-const char* controller_input_problem(const ControllerInput<Scalar, Arms, Joints>& input) noexcept
+ControllerInputProblem controller_input_problem(const ControllerInput<Scalar, Arms, Joints>& input) noexcept
 {
-    if (!all_finite(input.inertia)) return "inertia (not finite)";
-    if (!all_finite(input.bias)) return "bias (not finite)";
-    if (!all_finite(input.jacobian)) return "jacobian (not finite)";
-    if (!all_finite(input.jacobian_rate_qdot)) return "jacobian_rate_qdot (not finite)";
-    if (!all_finite(input.positions)) return "positions (not finite)";
-    if (!all_finite(input.velocities)) return "velocities (not finite)";
-    if (!all_finite(input.object.pose.position)) return "object.pose.position (not finite)";
-    if (!is_unit_quaternion(input.object.pose.orientation.coeffs())) return "object.pose.orientation (not unit)";
-    if (!all_finite(input.object.twist)) return "object.twist (not finite)";
-    if (!all_finite(input.object_acceleration)) return "object_acceleration (not finite)";
-    if (!all_finite(input.desired_pose.position)) return "desired_pose.position (not finite)";
-    if (!is_unit_quaternion(input.desired_pose.orientation.coeffs())) return "desired_pose.orientation (not unit)";
-    if (!all_finite(input.desired_twist)) return "desired_twist (not finite)";
-    if (!all_finite(input.desired_acceleration)) return "desired_acceleration (not finite)";
-    if (!all_finite(input.posture)) return "posture (not finite)";
-    return "none";
+    using Problem = ControllerInputProblem;
+    if (!all_finite(input.inertia)) return Problem::inertia_not_finite;
+    if (!all_finite(input.bias)) return Problem::bias_not_finite;
+    if (!all_finite(input.jacobian)) return Problem::jacobian_not_finite;
+    if (!all_finite(input.jacobian_rate_qdot)) return Problem::jacobian_rate_qdot_not_finite;
+    if (!all_finite(input.positions)) return Problem::positions_not_finite;
+    if (!all_finite(input.velocities)) return Problem::velocities_not_finite;
+    if (!all_finite(input.object.pose.position)) return Problem::object_position_not_finite;
+    if (!is_unit_quaternion(input.object.pose.orientation.coeffs())) return Problem::object_orientation_not_unit;
+    if (!all_finite(input.object.twist)) return Problem::object_twist_not_finite;
+    if (!all_finite(input.object_acceleration)) return Problem::object_acceleration_not_finite;
+    if (!all_finite(input.desired_pose.position)) return Problem::desired_position_not_finite;
+    if (!is_unit_quaternion(input.desired_pose.orientation.coeffs())) return Problem::desired_orientation_not_unit;
+    if (!all_finite(input.desired_twist)) return Problem::desired_twist_not_finite;
+    if (!all_finite(input.desired_acceleration)) return Problem::desired_acceleration_not_finite;
+    if (!all_finite(input.posture)) return Problem::posture_not_finite;
+    return Problem::none;
 }
 
 /// The grasp in {w} from the object's orientation: r_i = R_o p_i, R_ci = R_o R_i and the internal
-/// wrench basis B = blkdiag(R_o, ..., R_o) B_body (ProjectedDynamics::compute_with_basis).
+/// wrench basis B = blkdiag(R6, ..., R6) B_body, R6 = blkdiag(R_o, R_o)
+/// (ProjectedDynamics::compute_with_basis). r and B go straight into data.dynamics, their one
+/// owner.
 template <typename Model, typename Data>
 void controller_grasp(const Model& model, Data& data, const Matrix3<typename Model::Scalar>& object_rotation) noexcept
 {
     using Scalar = typename Model::Scalar;
-    for (Index block = 0; block < 2 * model.arms(); ++block) {
-        data.internal_basis.template middleRows<3>(3 * block).noalias() =
-            object_rotation.lazyProduct(model.body_internal_basis().template middleRows<3>(3 * block));
-    }
+    rotate_stack(object_rotation, model.body_internal_basis(), data.dynamics.internal_basis);
     for (Index i = 0; i < model.arms(); ++i) {
-        data.contact_offsets.col(i).noalias() = object_rotation * model.contact(i).frame.position;
+        data.dynamics.contact_offsets.col(i).noalias() = object_rotation * model.contact(i).frame.position;
         const Matrix3<Scalar> rotation = object_rotation * model.contact_rotation(i);
         data.contact_rotations.template middleCols<3>(3 * i) = rotation;
     }
@@ -227,7 +288,7 @@ template <typename Model, typename Data, typename Input>
 void controller_impedance(const Model& model, Data& data, const Input& input) noexcept
 {
     using Scalar = typename Model::Scalar;
-    const auto& dynamics = data.dynamics;
+    auto& dynamics = data.dynamics;  // non-const: project() uses its workspace
     data.pose_error.template head<3>() = input.object.pose.position - input.desired_pose.position;
     data.pose_error.template tail<3>() = rotational_stiffness_torque(
         orientation_error(input.object.pose.orientation, input.desired_pose.orientation), Scalar(1));
@@ -259,9 +320,8 @@ template <typename Model, typename Data> void controller_contact_qp(const Model&
         const auto moment_rows = basis.template middleRows<3>(6 * i + 3);
         const auto bias = data.contact_wrench_bias.template segment<6>(6 * i);
         data.gradient.noalias() += objective.moment_weight * moment_rows.transpose().lazyProduct(bias.template tail<3>());
-        const Matrix3<Scalar> rotation = data.contact_rotations.template middleCols<3>(3 * i);
         Vector6<Scalar> bias_in_contact_frame;
-        bias_in_contact_frame << rotation.transpose() * bias.template head<3>(), rotation.transpose() * bias.template tail<3>();
+        rotate_stack_back(data.contact_rotations.template middleCols<3>(3 * i), bias, bias_in_contact_frame);
         data.bounds.segment(model.row_offset(i), model.row_count(i)) =
             model.contact_frame_bounds().segment(model.row_offset(i), model.row_count(i));
         data.bounds.segment(model.row_offset(i), model.row_count(i)).noalias() -=
@@ -307,6 +367,7 @@ template <typename Model, typename Data> void controller_solve_squeeze(const Mod
     const bool warm = data.warm && model.qp_options().warm_start;
     const auto& result = warm ? data.qp.solve_warm(data.hessian, data.gradient, data.constraints, data.bounds)
                               : data.qp.solve(data.hessian, data.gradient, data.constraints, data.bounds);
+    data.qp_ran = true;
     data.qp_status = result.status;
     data.qp_iterations = result.iterations;
     data.fallback_used = false;
@@ -335,11 +396,8 @@ template <typename Model, typename Data> void controller_contact_outputs(const M
     data.contact_wrenches.noalias() += data.dynamics.internal_basis.lazyProduct(data.squeeze);
     data.tightest_margin = std::numeric_limits<Scalar>::infinity();
     for (Index i = 0; i < model.arms(); ++i) {
-        const Matrix3<Scalar> rotation = data.contact_rotations.template middleCols<3>(3 * i);
-        data.contact_frame_wrenches.col(i).template head<3>().noalias() =
-            rotation.transpose() * data.contact_wrenches.template segment<3>(6 * i);
-        data.contact_frame_wrenches.col(i).template tail<3>().noalias() =
-            rotation.transpose() * data.contact_wrenches.template segment<3>(6 * i + 3);
+        rotate_stack_back(data.contact_rotations.template middleCols<3>(3 * i), data.contact_wrenches.template segment<6>(6 * i),
+                          data.contact_frame_wrenches.col(i));
         Scalar margin = std::numeric_limits<Scalar>::infinity();
         for (Index k = model.row_offset(i); k < model.row_offset(i) + model.row_count(i); ++k) {
             const Scalar slack = data.bounds(k) - data.constraints.row(k).dot(data.squeeze);
@@ -369,22 +427,40 @@ void controller_posture(const Model& model, Data& data, const Input& input) noex
     data.dynamics.self_motion_projection(tau_0, data.posture_torque);
 }
 
-/// Every output set for a tick that computes no control: `torque` (zero or h), nothing else.
+/// Every output of a tick that computes no control (invalid_input, singular): `torque` (zero or
+/// h) and the status; everything the later steps compute is reset to zero (NaN-free), the QP
+/// marked as not run (qp_ran false, qp_iterations 0, qp_status solved: none failed), so that no
+/// output holds a previous tick's value (docs/control.md, "After a failed tick").
 template <typename Data, typename Torque>
 void controller_no_control(Data& data, ControlStatus status, const Torque& torque) noexcept
 {
+    using Scalar = typename Data::Scalar;
     data.status = status;
     data.torque = torque;
     data.motion_torque.setZero();
     data.squeeze_torque.setZero();
     data.posture_torque.setZero();
+    data.pose_error.setZero();
+    data.twist_error.setZero();
+    data.motion_wrench.setZero();
+    data.external_wrench.setZero();
+    data.contact_wrench_bias.setZero();
     data.squeeze.setZero();
     data.contact_wrenches.setZero();
     data.contact_frame_wrenches.setZero();
     data.friction_margins.setZero();
-    data.tightest_margin = typename Data::Scalar(0);
+    data.tightest_margin = Scalar(0);
+    data.tightest_contact = 0;
+    data.qp_ran = false;
+    data.qp_status = QpStatus::solved;
+    data.qp_iterations = 0;
     data.fallback_used = false;
+    data.fallback_violation = Scalar(0);
+    data.joint_acceleration.setZero();
     data.warm = false;
+    if (status == ControlStatus::invalid_input) {  // the grasp (step 2) did not run either
+        data.contact_rotations.setZero();
+    }
 }
 
 }  // namespace detail
@@ -406,19 +482,22 @@ controller_tick(const ControllerModel<Scalar, Arms, Joints, Edges>& model, Contr
                               input.jacobian_rate_qdot.size() == 6 * model.arms(),
                           "controller_tick: data or input sized for another controller model");
     data.input_problem = detail::controller_input_problem(input);
-    if (data.input_problem[0] != 'n') {
+    if (data.input_problem != ControllerInputProblem::none) {
         detail::controller_no_control(data, ControlStatus::invalid_input, Eigen::Matrix<Scalar, Joints, 1>::Zero(model.joints()));
         return data.torque;
     }
     data.inertia_factor.compute(input.inertia);
-    if (!regular_llt(data.inertia_factor)) {  // the pivot policy, numerics/pivot_policy.hpp
-        data.input_problem = "inertia (not positive definite)";
+    Llt<JointMatrix> inertia_factor;                       ///< M = L L^T: the input check that M is SPD
         detail::controller_no_control(data, ControlStatus::invalid_input, Eigen::Matrix<Scalar, Joints, 1>::Zero(model.joints()));
         return data.torque;
     }
     detail::controller_grasp(model, data, input.object.pose.orientation.toRotationMatrix());
+    // r and B are already the projection's own (controller_grasp wrote them there): passing them
+    // back makes compute_with_basis's copies self-assignments, harmless and cheaper than a second
+    // owner kept in sync.
     if (data.dynamics.compute_with_basis(input.inertia, input.bias, input.jacobian, input.jacobian_rate_qdot,
-                                         input.velocities, data.contact_offsets, data.internal_basis) != ProjectionStatus::ok) {
+                                         input.velocities, data.dynamics.contact_offsets,
+                                         data.dynamics.internal_basis) != ProjectionStatus::ok) {
         detail::controller_no_control(data, ControlStatus::singular, input.bias);
         return data.torque;
     }

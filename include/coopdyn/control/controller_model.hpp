@@ -24,6 +24,7 @@
 #include "coopdyn/detail/validation.hpp"
 #include "coopdyn/errors.hpp"
 #include "coopdyn/spatial/pose.hpp"
+#include "coopdyn/spatial/spatial_vector.hpp"
 
 #include <string>
 #include <type_traits>
@@ -284,10 +285,7 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::build_rows()
     moment_gram_ = Eigen::Matrix<Scalar, Internal, Internal>::Zero(internal, internal);
     for (Index i = 0; i < arms_; ++i) {
         Eigen::Matrix<Scalar, 6, Internal> in_contact_frame(6, internal);
-        in_contact_frame.template topRows<3>() =
-            contact_rotation(i).transpose() * body_internal_basis_.template middleRows<3>(6 * i);
-        in_contact_frame.template bottomRows<3>() =
-            contact_rotation(i).transpose() * body_internal_basis_.template middleRows<3>(6 * i + 3);
+        rotate_stack_back(contact_rotation(i), body_internal_basis_.template middleRows<6>(6 * i), in_contact_frame);
         contact_qp_constraints_.middleRows(row_offset(i), row_count(i)) =
             friction_rows_.middleRows(row_offset(i), row_count(i)) * in_contact_frame;
         const auto moment_rows = body_internal_basis_.template middleRows<3>(6 * i + 3);

@@ -320,7 +320,7 @@ public:
 
     /// x -> P x = x - Q1 (Q1^T x) (Q, into out; out may be x itself), L(4) without forming P.
     template <typename DerivedIn, typename DerivedOut>
-    void project(const Eigen::MatrixBase<DerivedIn>& x, const Eigen::MatrixBase<DerivedOut>& out_) const noexcept
+    void project(const Eigen::MatrixBase<DerivedIn>& x, const Eigen::MatrixBase<DerivedOut>& out_) noexcept
     {
         auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
         const auto q1 = reduced_q_.template leftCols<Internal>(reduced_.size());
@@ -332,12 +332,12 @@ public:
     /// x -> Jc^+ x (6K -> Q), the minimum-norm solution of Jc y = N x.
     template <typename DerivedIn, typename DerivedOut>
     void constraint_pseudo_inverse_times(const Eigen::MatrixBase<DerivedIn>& x,
-                                         const Eigen::MatrixBase<DerivedOut>& out) const noexcept;
+                                         const Eigen::MatrixBase<DerivedOut>& out) noexcept;
     /// y -> (Jc^T)^+ y (Q -> 6K), the minimum-norm least-squares solution of Jc^T lambda = y; it
     /// lies in null(G).
     template <typename DerivedIn, typename DerivedOut>
     void constraint_transpose_pseudo_inverse_times(const Eigen::MatrixBase<DerivedIn>& y,
-                                                   const Eigen::MatrixBase<DerivedOut>& out) const noexcept;
+                                                   const Eigen::MatrixBase<DerivedOut>& out) noexcept;
     /// out -= G^+ F, G^+ F = G^T (G G^T)^-1 F (6 -> 6K): the least-norm contact wrenches whose net
     /// wrench on the object is F.
     template <typename DerivedIn, typename DerivedOut>
@@ -361,7 +361,7 @@ public:
     ///
     /// Needs status ok (then J has full row rank: rank J = rank Jr + rank(Jx Q2)).
     template <typename DerivedIn, typename DerivedOut>
-    void self_motion_projection(const Eigen::MatrixBase<DerivedIn>& tau, const Eigen::MatrixBase<DerivedOut>& out_) const noexcept
+    void self_motion_projection(const Eigen::MatrixBase<DerivedIn>& tau, const Eigen::MatrixBase<DerivedOut>& out_) noexcept
     {
         auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
         COOPDYN_ASSERT(status == ProjectionStatus::ok, "self_motion_projection needs a regular projection");
@@ -378,7 +378,7 @@ public:
     /// x -> Mc^-1 x (Q, into out; out may be x itself). With v = [Q1 Q2]^T x (see the class
     /// comment): Mc^-1 x = Q1 v1 + Q2 M22^-1 (v2 - Q2^T M Q1 v1).
     template <typename DerivedIn, typename DerivedOut>
-    void constrained_inertia_solve(const Eigen::MatrixBase<DerivedIn>& x, const Eigen::MatrixBase<DerivedOut>& out_) const noexcept
+    void constrained_inertia_solve(const Eigen::MatrixBase<DerivedIn>& x, const Eigen::MatrixBase<DerivedOut>& out_) noexcept
     {
         auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
         const Index internal = 6 * (arms() - 1);
@@ -450,15 +450,18 @@ private:
     Llt<FreeMatrix> free_inertia_factor_;
     Eigen::Matrix<Scalar, Free, 6> task_reduced_;  // E = L22^-1 Q2^T Jx^T
     Llt<Matrix6<Scalar>> task_factor_;
-    mutable Eigen::Matrix<Scalar, Internal, 1> reduced_;  // scratch of the pseudo-inverse products
+    // Scratch of the products above (project, the pseudo-inverses, self_motion_projection,
+    // constrained_inertia_solve): those methods write it, so they are non-const rather than the
+    // scratch mutable (a const ProjectedDynamics shared between threads would race on it).
+    Eigen::Matrix<Scalar, Internal, 1> reduced_;
     StackVector stack_scratch_;
     Vector6<Scalar> object_twist_rate_;  // Jx Mc^-1 (P h - Pdot qdot) - Jxdot qdot
     JointVector joint_scratch_;
     Eigen::Matrix<Scalar, 1, Joints> reduced_workspace_;
-    mutable JointVector solve_scratch_;
-    mutable JointVector solve_internal_;
-    mutable Eigen::Matrix<Scalar, Free, 1> free_scratch_;
-    mutable Vector6<Scalar> task_scratch_;
+    JointVector solve_scratch_;
+    JointVector solve_internal_;
+    Eigen::Matrix<Scalar, Free, 1> free_scratch_;
+    Vector6<Scalar> task_scratch_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -658,7 +661,7 @@ void ProjectedDynamics<Scalar, Arms, Joints>::compute_rates(const Eigen::MatrixB
 template <typename Scalar, int Arms, int Joints>
 template <typename DerivedIn, typename DerivedOut>
 void ProjectedDynamics<Scalar, Arms, Joints>::constraint_pseudo_inverse_times(
-    const Eigen::MatrixBase<DerivedIn>& x, const Eigen::MatrixBase<DerivedOut>& out_) const noexcept
+    const Eigen::MatrixBase<DerivedIn>& x, const Eigen::MatrixBase<DerivedOut>& out_) noexcept
 {
     auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
     auto& reduced = reduced_;
@@ -672,7 +675,7 @@ void ProjectedDynamics<Scalar, Arms, Joints>::constraint_pseudo_inverse_times(
 template <typename Scalar, int Arms, int Joints>
 template <typename DerivedIn, typename DerivedOut>
 void ProjectedDynamics<Scalar, Arms, Joints>::constraint_transpose_pseudo_inverse_times(
-    const Eigen::MatrixBase<DerivedIn>& y, const Eigen::MatrixBase<DerivedOut>& out_) const noexcept
+    const Eigen::MatrixBase<DerivedIn>& y, const Eigen::MatrixBase<DerivedOut>& out_) noexcept
 {
     auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
     auto& reduced = reduced_;

@@ -110,12 +110,47 @@ public:
     }
 
     /// R S R^T: the same matrix expressed in the frame that R rotates into (e.g. a body-frame
-    /// inertia in {w}, (9)).
-    template <typename Derived> Symmetric3 rotated(const Eigen::MatrixBase<Derived>& rotation) const
+    /// inertia in {w}, (9)). Entry by entry: the rows of R S from the six entries (27
+    /// multiply-adds), then only the six distinct (R S)_a . R_b (18), instead of the 54 of the
+    /// dense product R S R^T, whose result would then be symmetric only up to rounding.
+    template <typename Derived> COOPDYN_INLINE Symmetric3 rotated(const Eigen::MatrixBase<Derived>& rotation) const noexcept
     {
         EIGEN_STATIC_ASSERT_MATRIX_SPECIFIC_SIZE(Derived, 3, 3);
-        const Matrix3<Scalar> product = rotation * matrix() * rotation.transpose();
-        return Symmetric3(product);
+        const Scalar r00 = rotation(0, 0), r01 = rotation(0, 1), r02 = rotation(0, 2);
+        const Scalar r10 = rotation(1, 0), r11 = rotation(1, 1), r12 = rotation(1, 2);
+        const Scalar r20 = rotation(2, 0), r21 = rotation(2, 1), r22 = rotation(2, 2);
+        return congruence(r00, r01, r02, r10, r11, r12, r20, r21, r22);
+    }
+    /// R^T S R: the inverse of rotated(R) for an orthonormal R (e.g. a {w} inertia into the body
+    /// frame). The same six-entry product with R^T.
+    template <typename Derived>
+    COOPDYN_INLINE Symmetric3 rotated_back(const Eigen::MatrixBase<Derived>& rotation) const noexcept
+    {
+        EIGEN_STATIC_ASSERT_MATRIX_SPECIFIC_SIZE(Derived, 3, 3);
+        const Scalar r00 = rotation(0, 0), r01 = rotation(0, 1), r02 = rotation(0, 2);
+        const Scalar r10 = rotation(1, 0), r11 = rotation(1, 1), r12 = rotation(1, 2);
+        const Scalar r20 = rotation(2, 0), r21 = rotation(2, 1), r22 = rotation(2, 2);
+        return congruence(r00, r10, r20, r01, r11, r21, r02, r12, r22);
+    }
+    /// R diag(d) R^T, the rotated(R) of diagonal(d(0), d(1), d(2)) in 27 multiply-adds (R diag(d)
+    /// is R with scaled columns): a principal-axes inertia in another frame.
+    template <typename DerivedD, typename DerivedR>
+    static COOPDYN_INLINE Symmetric3 rotated_diagonal(const Eigen::MatrixBase<DerivedD>& d,
+                                                      const Eigen::MatrixBase<DerivedR>& rotation) noexcept
+    {
+        EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedD, 3);
+        EIGEN_STATIC_ASSERT_MATRIX_SPECIFIC_SIZE(DerivedR, 3, 3);
+        const Scalar d0 = d(0), d1 = d(1), d2 = d(2);
+        const Scalar r00 = rotation(0, 0), r01 = rotation(0, 1), r02 = rotation(0, 2);
+        const Scalar r10 = rotation(1, 0), r11 = rotation(1, 1), r12 = rotation(1, 2);
+        const Scalar r20 = rotation(2, 0), r21 = rotation(2, 1), r22 = rotation(2, 2);
+        // Row a of R diag(d).
+        const Scalar a00 = r00 * d0, a01 = r01 * d1, a02 = r02 * d2;
+        const Scalar a10 = r10 * d0, a11 = r11 * d1, a12 = r12 * d2;
+        const Scalar a20 = r20 * d0, a21 = r21 * d1, a22 = r22 * d2;
+        return Symmetric3(a00 * r00 + a01 * r01 + a02 * r02, a10 * r00 + a11 * r01 + a12 * r02,
+                          a20 * r00 + a21 * r01 + a22 * r02, a10 * r10 + a11 * r11 + a12 * r12,
+                          a20 * r10 + a21 * r11 + a22 * r12, a20 * r20 + a21 * r21 + a22 * r22);
     }
 
     Scalar trace() const noexcept { return xx + yy + zz; }
@@ -185,6 +220,25 @@ public:
                zz == other.zz;
     }
     bool operator!=(const Symmetric3& other) const { return !(*this == other); }
+
+private:
+    /// A S A^T for A = [[a00, a01, a02], [a10, a11, a12], [a20, a21, a22]]: rows of A S, then the
+    /// six distinct entries (A S)_a . A_b.
+    COOPDYN_INLINE Symmetric3 congruence(const Scalar& a00, const Scalar& a01, const Scalar& a02, const Scalar& a10,
+                                         const Scalar& a11, const Scalar& a12, const Scalar& a20, const Scalar& a21,
+                                         const Scalar& a22) const noexcept
+    {
+        // Row a of A S (S's columns: (xx, yx, zx), (yx, yy, zy), (zx, zy, zz)).
+        const Scalar p00 = a00 * xx + a01 * yx + a02 * zx, p01 = a00 * yx + a01 * yy + a02 * zy,
+                     p02 = a00 * zx + a01 * zy + a02 * zz;
+        const Scalar p10 = a10 * xx + a11 * yx + a12 * zx, p11 = a10 * yx + a11 * yy + a12 * zy,
+                     p12 = a10 * zx + a11 * zy + a12 * zz;
+        const Scalar p20 = a20 * xx + a21 * yx + a22 * zx, p21 = a20 * yx + a21 * yy + a22 * zy,
+                     p22 = a20 * zx + a21 * zy + a22 * zz;
+        return Symmetric3(p00 * a00 + p01 * a01 + p02 * a02, p10 * a00 + p11 * a01 + p12 * a02,
+                          p20 * a00 + p21 * a01 + p22 * a02, p10 * a10 + p11 * a11 + p12 * a12,
+                          p20 * a10 + p21 * a11 + p22 * a12, p20 * a20 + p21 * a21 + p22 * a22);
+    }
 };
 
 }  // namespace coopdyn
