@@ -14,7 +14,7 @@
 //   scenarios/beam.json: arms[0].end_effector.mass: must be positive and finite, got -10
 #pragma once
 
-#include "common/json_reader.hpp"
+#include "../common/json_reader.hpp"
 
 #include <coopdyn/coopdyn.hpp>
 

@@ -19,10 +19,11 @@
 
 #include "beam_experiment.hpp"
 #include "beam_report.hpp"
-#include "common/cli.hpp"
-#include "common/csv_table.hpp"
-#include "common/plotting.hpp"
 #include "scenario.hpp"
+
+#include "../common/cli.hpp"
+#include "../common/csv_table.hpp"
+#include "../common/plotting.hpp"
 
 #include <coopdyn/coopdyn.hpp>
 
@@ -41,7 +42,7 @@
 #include <vector>
 
 #ifndef COOPDYN_SCENARIO_DIR
-#define COOPDYN_SCENARIO_DIR "examples/scenarios"
+#define COOPDYN_SCENARIO_DIR "examples/beam/scenarios"
 #endif
 
 namespace {
@@ -55,11 +56,11 @@ using example_common::exit_scenario;
 using example_common::exit_usage;
 
 /// The default --scenario as --help shows it (relative to the repository root).
-const char* const shipped_scenario = "examples/scenarios/beam.json";
+const char* const shipped_scenario = "examples/beam/scenarios/beam.json";
 
 /// The file of the default --scenario: the shipped beam in the source tree the program was built
 /// from (COOPDYN_SCENARIO_DIR), wherever the program is run from; if that tree is gone,
-/// examples/scenarios/beam.json relative to the working directory (the repository root).
+/// examples/beam/scenarios/beam.json relative to the working directory (the repository root).
 std::string default_scenario_file()
 {
     const std::string built = std::string(COOPDYN_SCENARIO_DIR) + "/beam.json";
@@ -309,7 +310,7 @@ int main(int argc, char** argv)
     app.option_defaults()->always_capture_default();
     auto* scenario_option =
         app.add_option("--scenario", command.scenario,
-                       "Scenario file (JSON), see examples/scenarios/; default: the shipped beam scenario")
+                       "Scenario file (JSON), see examples/beam/scenarios/; default: the shipped beam scenario")
             ->type_name("FILE")
             ->default_str(shipped_scenario);
     app.add_option("--experiment", command.experiments, "Experiments to run: x, rot_z, se3 or all")

@@ -3,9 +3,10 @@
 #pragma once
 
 #include "beam_experiment.hpp"
-#include "common/csv_table.hpp"
-#include "common/plotting.hpp"
 #include "scenario.hpp"
+
+#include "../common/csv_table.hpp"
+#include "../common/plotting.hpp"
 
 #include <array>
 #include <charconv>

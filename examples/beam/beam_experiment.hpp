@@ -9,8 +9,9 @@
 // the object. The simulation is coopdyn's Simulator (full model of docs/dynamics.md, RK4).
 #pragma once
 
-#include "common/progress.hpp"
 #include "scenario.hpp"
+
+#include "../common/progress.hpp"
 
 #include <coopdyn/coopdyn.hpp>
 
