@@ -7,7 +7,7 @@
 #include "box_experiment.hpp"
 #include "box_scenario_loader.hpp"
 #include "mujoco_plant.hpp"
-#include "rigid_plant.hpp"
+#include "mujoco_rigid_plant.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -82,14 +82,14 @@ BENCHMARK(BM_MujocoStep)->Unit(benchmark::kMicrosecond);
 void BM_RigidPlantStep(benchmark::State& state)
 {
     const DataPointer start = world().make_data_at_hold();
-    auto plant = std::make_unique<RigidGraspPlant>(world(), *start, box_inertia(world(), 0.7));
+    auto plant = std::make_unique<RigidGraspPlant>(make_rigid_plant(world(), *start, box_inertia(world(), 0.7)));
     const JointVector tau = plant->arm_terms().bias;
     long steps = 0;
     for (auto _ : state) {
         plant->end_tick(tau, Vector6d::Zero());
         if (++steps % 200 == 0) {
             state.PauseTiming();
-            plant = std::make_unique<RigidGraspPlant>(world(), *start, box_inertia(world(), 0.7));
+            plant = std::make_unique<RigidGraspPlant>(make_rigid_plant(world(), *start, box_inertia(world(), 0.7)));
             state.ResumeTiming();
         }
     }
@@ -145,7 +145,7 @@ BENCHMARK(BM_ArmTermsMujoco);
 void BM_WeldSolve(benchmark::State& state)
 {
     const DataPointer start = world().make_data_at_hold();
-    const RigidGraspPlant plant(world(), *start, box_inertia(world(), 0.7));
+    const RigidGraspPlant plant = make_rigid_plant(world(), *start, box_inertia(world(), 0.7));
     const auto solver = static_cast<RigidGraspPlant::WeldSolver>(state.range(0));
     const JointVector tau = plant.arm_terms().bias;
     RigidGraspSolution solution;
@@ -194,7 +194,7 @@ void BM_ExperimentRigid(benchmark::State& state, const std::string& name)
 {
     run_experiment_benchmark(state, name, [](const BoxScenario& scenario) {
         const DataPointer start = world().make_data_at_hold();
-        return std::make_unique<RigidGraspPlant>(world(), *start, box_inertia(world(), scenario.box_mass));
+        return std::make_unique<RigidGraspPlant>(make_rigid_plant(world(), *start, box_inertia(world(), scenario.box_mass)));
     });
 }
 

@@ -1,5 +1,5 @@
 // Simulated time per wall-clock time of the paper's two-arm beam (docs/analysis.md; the main
-// job examples/two_arm_beam): N = 2 fixed, RK4, 1 kHz, logging off. Target: >= 2000x real time,
+// job examples/beam/two_arm_beam): N = 2 fixed, RK4, 1 kHz, logging off. Target: >= 2000x real time,
 // i.e. 20 s of simulation in <= 10 ms.
 //
 //   BM_Beam20s/constant       20 000 RK4 steps, constant inputs (held beam, constant push)

@@ -4,7 +4,9 @@
 // from JSON; the defaults here are the shipped hold experiment's.
 #pragma once
 
-#include "mujoco_plant.hpp"
+#include "box_model.hpp"
+
+#include <Eigen/Core>
 
 #include <array>
 #include <optional>

@@ -7,7 +7,7 @@
 #include "box_scenario_loader.hpp"
 #include "minimum_squeeze.hpp"
 #include "mujoco_plant.hpp"
-#include "rigid_plant.hpp"
+#include "mujoco_rigid_plant.hpp"
 
 #include "../common/cli.hpp"
 #include "../common/output_names.hpp"
@@ -128,7 +128,7 @@ int run(const CommandLine& command, std::vector<BoxScenario> scenarios)
         }
         if (rigid) {
             const DataPointer start = world.make_data_at_hold();
-            RigidGraspPlant plant(world, *start, box_inertia(world, scenario.box_mass));
+            RigidGraspPlant plant = make_rigid_plant(world, *start, box_inertia(world, scenario.box_mass));
             summaries.emplace_back(scenario, run_one(plant, scenario, "rigid", grasp, command, progress, plots));
         }
     }

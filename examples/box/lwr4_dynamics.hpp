@@ -127,17 +127,33 @@ public:
     /// Fills `out` at (q, qdot). Allocates nothing.
     void evaluate(const JointVector& q, const JointVector& qdot, Lwr4ArmTerms& out) const noexcept
     {
+        LinkKinematics pass;
+        outward_pass(q, qdot, pass, out);
+        inward_pass(pass, out);
+    }
+
+private:
+    static constexpr int n = 7;
+
+    /// Per link, world frame (column i: link i's, joint i's quantity): the joint axis and its pivot,
+    /// the centre of mass, the angular velocity and acceleration, the centre of mass's
+    /// velocity-product acceleration (no gravity), the inertia about the centre of mass.
+    struct LinkKinematics {
+        Eigen::Matrix<double, 3, n> axis, pivot, com, angular_velocity, angular_acceleration, com_acceleration;
+        std::array<coopdyn::Symmetric3<double>, n> inertia_world;
+    };
+
+    /// The outward pass: frames, axes, velocities, velocity-product accelerations; then the palm's
+    /// frame, Jacobian and Jdot qdot into `out`.
+    void outward_pass(const JointVector& q, const JointVector& qdot, LinkKinematics& pass, Lwr4ArmTerms& out) const noexcept
+    {
         using Eigen::Vector3d;
-        constexpr int n = 7;
         std::array<double, n + 1> angle{};  // and one padding angle
         for (int i = 0; i < n; ++i) {
             angle[link_index(i)] = q(i);
         }
         const SinCos<n + 1> joint = sin_cos(angle);
-        // Outward pass: frames, axes, velocities, velocity-product accelerations (no gravity).
-        // Column i: link i's (joint i's) quantity.
-        Eigen::Matrix<double, 3, n> axis, pivot, com, angular_velocity, angular_acceleration, com_acceleration;
-        std::array<coopdyn::Symmetric3<double>, n> inertia_world;  // about each link's com
+        auto& [axis, pivot, com, angular_velocity, angular_acceleration, com_acceleration, inertia_world] = pass;
         Eigen::Matrix3d rotation = base_.linear();
         Vector3d origin = base_.translation();
         Vector3d w = Vector3d::Zero(), alpha = Vector3d::Zero(), origin_acceleration = Vector3d::Zero();
@@ -183,6 +199,13 @@ public:
             out.jacobian.col(i) << axis.col(i).cross(out.palm_position - pivot.col(i)), axis.col(i);
         }
 
+    }
+
+    /// The inward pass: the bias h by Newton-Euler and M by the composite-rigid-body algorithm.
+    void inward_pass(const LinkKinematics& pass, Lwr4ArmTerms& out) const noexcept
+    {
+        using Eigen::Vector3d;
+        const auto& [axis, pivot, com, angular_velocity, angular_acceleration, com_acceleration, inertia_world] = pass;
         // One inward pass for both h and the composite inertias.
         // Newton-Euler: h_i = u_i . n_i.
         // CRBA about the world origin (coopdyn's spatial algebra, [linear; angular]):
@@ -220,7 +243,6 @@ public:
         out.inertia.triangularView<Eigen::StrictlyLower>() = products.topRows<n>().transpose();
     }
 
-private:
     static std::size_t link_index(int i) noexcept { return static_cast<std::size_t>(i); }
 
     std::array<Lwr4Link, 7> links_;

@@ -1,13 +1,16 @@
 // The dual-arm box's MJCF model (dual_arm_box.xml) loaded into MuJoCo, and what the controller
-// needs of the two arms each tick, read from MuJoCo's own functions on the arms alone:
-// M (14 x 14), h (14), the palms' stacked Jacobian J (12 x 14, rows [v; w] per palm in {w}) and
-// Jdot qdot (12). docs/dual-arm-box.md, "The plants".
+// needs of the two arms each tick (box_model.hpp's ArmTerms), read from MuJoCo's own functions on
+// the arms alone: M (14 x 14), h (14), the palms' stacked Jacobian J (12 x 14, rows [v; w] per palm
+// in {w}) and Jdot qdot (12); and the grasp at the MJCF's keyframe "hold". docs/dual-arm-box.md,
+// "The plants".
 //
 // The box's free joint is a separate kinematic tree: it couples to the arms neither in M nor in
 // the bias, so the arms' blocks of MuJoCo's full-model quantities are the arms' alone.
 //
 // This header belongs to the examples (it depends on MuJoCo), not to the library.
 #pragma once
+
+#include "box_model.hpp"
 
 #include <Eigen/Core>
 #include <mujoco/mujoco.h>
@@ -16,29 +19,9 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace box_example {
-
-constexpr int arm_joints = 7;
-constexpr int joints = 2 * arm_joints;  ///< Q: left arm (qpos/qvel 0-6), right arm (7-13)
-constexpr int palms = 2;                ///< K: 0 = left palm, 1 = right palm
-/// The controller's period (s): one plant step per 1 kHz tick, so the MJCF's timestep.
-constexpr double controller_period = 0.001;
-
-using JointVector = Eigen::Matrix<double, joints, 1>;
-using JointMatrix = Eigen::Matrix<double, joints, joints>;
-using StackVector = Eigen::Matrix<double, 6 * palms, 1>;
-using StackJacobian = Eigen::Matrix<double, 6 * palms, joints>;
-
-/// What the controller gets of the arms at one state (q, qdot).
-struct ArmTerms {
-    JointMatrix inertia = JointMatrix::Identity();  ///< M(q)
-    JointVector bias = JointVector::Zero();         ///< h(q, qdot) = C qdot + g
-    StackJacobian jacobian = StackJacobian::Zero(); ///< J: palm i's contact-point twist [v; w] in {w}
-    StackVector jacobian_rate_qdot = StackVector::Zero();  ///< Jdot qdot
-    std::array<Eigen::Vector3d, palms> palm_position{};    ///< contact points in {w}
-    std::array<Eigen::Matrix3d, palms> palm_rotation{};    ///< palm frames (z: outward normal, into the box)
-};
 
 struct ModelDeleter {
     void operator()(mjModel* model) const noexcept { mj_deleteModel(model); }
@@ -170,6 +153,24 @@ inline void read_arm_terms(const DualArmBoxModel& world, const mjModel* model, m
         terms.palm_rotation[static_cast<std::size_t>(palm)] =
             Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(rotation);
     }
+}
+
+/// The grasp at the keyframe "hold": the box's pose, the palms' contact frames, the arms' q.
+inline Grasp hold_grasp(const DualArmBoxModel& world)
+{
+    const DataPointer data = world.make_data_at_hold();
+    compute_arm_stages(world.get(), data.get());
+    ArmTerms terms;
+    std::vector<mjtNum> scratch(static_cast<std::size_t>(6 * world.get()->nv + world.get()->nv * world.get()->nv));
+    read_arm_terms(world, world.get(), data.get(), terms, scratch.data());
+    Grasp grasp;
+    const mjtNum* box = data->qpos + joints;
+    grasp.box.position = Eigen::Vector3d(box[0], box[1], box[2]);
+    grasp.box.orientation = Eigen::Quaterniond(box[3], box[4], box[5], box[6]).normalized();
+    grasp.palm_position = terms.palm_position;
+    grasp.palm_rotation = terms.palm_rotation;
+    grasp.q = Eigen::Map<const JointVector>(data->qpos);
+    return grasp;
 }
 
 }  // namespace box_example

@@ -21,14 +21,6 @@
 
 namespace box_example {
 
-using Vector6d = Eigen::Matrix<double, 6, 1>;
-
-/// The palms' true friction in the plant (MuJoCo's pair friction, condim 4).
-struct PlantFriction {
-    double sliding = 0.5;      ///< Coulomb coefficient, both tangential directions
-    double torsional = 0.005;  ///< MuJoCo's torsional coefficient (m): |t_z| <= torsional f_z
-};
-
 class MujocoPlant {
 public:
     MujocoPlant(const DualArmBoxModel& world, const PlantFriction& friction)

@@ -21,18 +21,19 @@
 // corrected by Baumgarte stabilisation (critically damped at `stabilisation_frequency`).
 //
 // The arms' M, h, J, Jdot qdot come from their own recursion (lwr4_dynamics.hpp, from lwr4.hpp's
-// DH parameters), not from MuJoCo: the plant uses MuJoCo only at construction, for the initial
-// state and to check that the MJCF's arms are lwr4.hpp's. WeldSolver::structured then solves the
-// weld arm by arm. This header belongs to the examples, not to the library.
+// DH parameters), not from MuJoCo: this header needs no MuJoCo. It starts from any state, e.g.
+// hold_state() (lwr4.hpp's hold configuration); mujoco_rigid_plant.hpp starts it from the MJCF's
+// keyframe instead and checks that the MJCF's arms are lwr4.hpp's. WeldSolver::structured solves
+// the weld arm by arm (coopdyn::JointSpaceGrasp). This header belongs to the examples, not to the
+// library.
 #pragma once
 
+#include "box_model.hpp"
+#include "lwr4.hpp"
 #include "lwr4_dynamics.hpp"
-#include "mujoco_arms.hpp"
 
-#include <coopdyn/dynamics/interaction_wrenches.hpp>
+#include <coopdyn/dynamics/joint_space_grasp.hpp>
 #include <coopdyn/dynamics/udwadia_kalaba.hpp>
-#include <coopdyn/numerics/fixed_ldlt.hpp>
-#include <coopdyn/numerics/pivot_policy.hpp>
 #include <coopdyn/spatial/inertia.hpp>
 #include <coopdyn/spatial/quaternion.hpp>
 #include <coopdyn/spatial/skew.hpp>
@@ -43,12 +44,9 @@
 
 #include <algorithm>
 #include <array>
-#include <string>
-#include <vector>
 
 namespace box_example {
 
-using Vector6d = Eigen::Matrix<double, 6, 1>;
 constexpr int plant_velocities = joints + 6;  ///< qdot (14), v (3), w (3)
 using PlantVector = Eigen::Matrix<double, plant_velocities, 1>;
 using PlantMatrix = Eigen::Matrix<double, plant_velocities, plant_velocities>;
@@ -84,53 +82,52 @@ struct BoxInertia {
     Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();  ///< about the centre, box frame
 };
 
-/// The box of the MJCF with `mass`: its inertia (principal, the model's body frame) scaled to it.
-inline BoxInertia box_inertia(const DualArmBoxModel& world, double mass)
+/// The box of lwr4.hpp's box_spec() with `mass`: a uniform cuboid, principal axes along the box's.
+inline BoxInertia box_inertia(double mass)
 {
-    const mjModel* model = world.get();
-    const int body = world.box_body();
+    const Eigen::Vector3d squared = box_spec().size.cwiseAbs2();
     BoxInertia box;
     box.mass = mass;
-    const Eigen::Quaterniond principal(model->body_iquat[4 * body], model->body_iquat[4 * body + 1],
-                                       model->body_iquat[4 * body + 2], model->body_iquat[4 * body + 3]);
-    const Eigen::Matrix3d axes = principal.normalized().toRotationMatrix();
-    const Eigen::Vector3d moments(model->body_inertia[3 * body], model->body_inertia[3 * body + 1],
-                                  model->body_inertia[3 * body + 2]);
-    box.inertia = (mass / model->body_mass[body]) * axes * moments.asDiagonal() * axes.transpose();
+    box.inertia = (mass / 12.0) *
+                  Eigen::Vector3d(squared.y() + squared.z(), squared.x() + squared.z(), squared.x() + squared.y()).asDiagonal();
     return box;
+}
+
+/// lwr4.hpp's hold configuration at rest: the arms in q_hold(), the box at box_hold_pose(), the
+/// palms touching it (the MJCF's keyframe "hold" holds the same numbers).
+inline PlantState hold_state()
+{
+    PlantState state;
+    state.q = q_hold();
+    state.box_position = box_hold_pose().translation();
+    state.box_orientation = Eigen::Quaterniond(box_hold_pose().linear());
+    return state;
 }
 
 class RigidGraspPlant {
 public:
-    /// Starts from `initial` (arms and box as in the MuJoCo data, e.g. the keyframe "hold") and
-    /// welds each palm to the box where it touches it there.
-    RigidGraspPlant(const DualArmBoxModel& world, const mjData& initial, const BoxInertia& box,
+    /// Starts from `initial` (e.g. hold_state(); a unit box orientation) and welds each palm to the
+    /// box where it is there.
+    /// `gravity` in {w}; the weld's drift is corrected by Baumgarte terms critically damped at
+    /// `stabilisation_frequency` (rad/s).
+    RigidGraspPlant(const PlantState& initial, const BoxInertia& box,
+                    const Eigen::Vector3d& gravity = Eigen::Vector3d(0.0, 0.0, -9.81),
                     double stabilisation_frequency = 50.0)
-        : world_(world),
-          arms_{Lwr4Dynamics(Side::left, gravity_of(world)), Lwr4Dynamics(Side::right, gravity_of(world))},
+        : arms_{Lwr4Dynamics(Side::left, gravity), Lwr4Dynamics(Side::right, gravity)},
           box_(box),
+          gravity_(gravity),
           period_(controller_period),
           stiffness_(stabilisation_frequency * stabilisation_frequency),
-          damping_(2.0 * stabilisation_frequency)
+          damping_(2.0 * stabilisation_frequency),
+          state_(initial)
     {
-        for (int j = 0; j < joints; ++j) {
-            state_.q(j) = initial.qpos[j];
-            state_.qdot(j) = initial.qvel[j];
-        }
-        const mjtNum* box_pose = initial.qpos + joints;
-        state_.box_position = Eigen::Vector3d(box_pose[0], box_pose[1], box_pose[2]);
-        state_.box_orientation = Eigen::Quaterniond(box_pose[3], box_pose[4], box_pose[5], box_pose[6]).normalized();
         const Eigen::Matrix3d box_rotation = state_.box_orientation.toRotationMatrix();
-        state_.box_velocity = Eigen::Vector3d(initial.qvel[joints], initial.qvel[joints + 1], initial.qvel[joints + 2]);
-        state_.box_angular_velocity =
-            box_rotation * Eigen::Vector3d(initial.qvel[joints + 3], initial.qvel[joints + 4], initial.qvel[joints + 5]);
         evaluate_terms(state_, own_terms_);
         // The cross blocks stay zero (the arms share no joint): write_block_diagonal() writes
         // only the arms' own blocks.
         terms_.inertia.setZero();
         terms_.jacobian.setZero();
         write_block_diagonal(own_terms_, terms_);
-        require_arms_as_in_the_mjcf(world, initial, terms_);
         for (std::size_t i = 0; i < palms; ++i) {
             weld_point_[i] = box_rotation.transpose() * (own_terms_[i].palm_position - state_.box_position);
             weld_rotation_[i] = Eigen::Quaterniond(box_rotation.transpose() * own_terms_[i].palm_rotation).normalized();
@@ -175,6 +172,7 @@ public:
     /// Where palm i is welded to the box, in the box frame.
     const Eigen::Vector3d& weld_point(int palm) const noexcept { return weld_point_[static_cast<std::size_t>(palm)]; }
     const BoxInertia& box() const noexcept { return box_; }
+    const Eigen::Vector3d& gravity() const noexcept { return gravity_; }
     /// A mass placed on the box (docs/dual-arm-box.md, "Add mass"): the box's mass and inertia
     /// about its centre grow in proportion.
     void set_box_mass(double mass) noexcept
@@ -234,7 +232,7 @@ public:
     /// How solve() applies (18):
     /// - `structured` (the per-tick path): per arm, the palm's operational-space inertia
     ///   Lambda_i = (J_i M_i^-1 J_i^T)^-1 and free acceleration turn the weld into the first
-    ///   paper's N + 1 bodies, solved by coopdyn::interaction_wrenches (the structured form of
+    ///   paper's N + 1 bodies, solved by coopdyn::JointSpaceGrasp (the structured form of
     ///   (18); docs/dual-arm-box.md, "The rigid plant"). Exact, because the arms share no joint:
     ///   M and J are block diagonal (checked at construction).
     /// - `constraint_space`: coopdyn::try_udwadia_kalaba_full_rank on the stacked 20-velocity
@@ -288,47 +286,6 @@ private:
         }
     }
 
-    static Eigen::Vector3d gravity_of(const DualArmBoxModel& world)
-    {
-        const mjtNum* gravity = world.get()->opt.gravity;
-        return Eigen::Vector3d(gravity[0], gravity[1], gravity[2]);
-    }
-
-    /// The plant's arms are lwr4.hpp's (Lwr4Dynamics); the MJCF's must be the same, or the two
-    /// plants would simulate different robots. Compared once, at the initial state, with MuJoCo's
-    /// M, h, J, Jdot qdot and palm frames (all 14 joints: the arms must share none, which
-    /// WeldSolver::structured relies on).
-    static void require_arms_as_in_the_mjcf(const DualArmBoxModel& world, const mjData& initial, const ArmTerms& own)
-    {
-        const mjModel* model = world.get();
-        const DataPointer data(mj_makeData(model));
-        if (!data) {
-            throw std::runtime_error("MuJoCo cannot allocate its mjData");
-        }
-        mj_copyData(data.get(), model, &initial);
-        compute_arm_stages(model, data.get());
-        ArmTerms mujoco;
-        std::vector<mjtNum> scratch(static_cast<std::size_t>(6 * model->nv + model->nv * model->nv));
-        read_arm_terms(world, model, data.get(), mujoco, scratch.data());
-        const auto differs = [](const auto& value, const auto& expected) {
-            return !((value - expected).norm() <= 1e-9 * std::max(1.0, expected.norm()));
-        };
-        const char* problem = differs(own.inertia, mujoco.inertia)                         ? "M"
-                              : differs(own.bias, mujoco.bias)                             ? "h"
-                              : differs(own.jacobian, mujoco.jacobian)                     ? "J"
-                              : differs(own.jacobian_rate_qdot, mujoco.jacobian_rate_qdot) ? "Jdot qdot"
-                                                                                           : nullptr;
-        for (std::size_t i = 0; i < palms && problem == nullptr; ++i) {
-            if (differs(own.palm_position[i], mujoco.palm_position[i]) || differs(own.palm_rotation[i], mujoco.palm_rotation[i])) {
-                problem = "palm frame";
-            }
-        }
-        if (problem != nullptr) {
-            throw std::runtime_error(std::string("rigid plant: the MJCF's arms are not lwr4.hpp's (") + problem +
-                                     " differs from MuJoCo's at the initial state by more than 1e-9)");
-        }
-    }
-
     WeldGeometry weld_geometry(const PlantState& state, const ArmPairTerms& terms) const
     {
         WeldGeometry weld;
@@ -356,86 +313,39 @@ private:
     /// The box's unconstrained wrench about its centre, {w}: [m g + F_e; T_e - w x I_w w].
     Vector6d box_free_wrench(const Eigen::Matrix3d& inertia_world, const Eigen::Vector3d& w, const Vector6d& box_wrench) const
     {
-        const Eigen::Vector3d gravity(world_.get()->opt.gravity[0], world_.get()->opt.gravity[1],
-                                      world_.get()->opt.gravity[2]);
         Vector6d wrench;
-        wrench << box_.mass * gravity + box_wrench.head<3>(), box_wrench.tail<3>() - w.cross(inertia_world * w);
+        wrench << box_.mass * gravity_ + box_wrench.head<3>(), box_wrench.tail<3>() - w.cross(inertia_world * w);
         return wrench;
     }
 
-    /// WeldSolver::structured. Arm i alone, with a wrench f_i on its palm, has the palm
-    /// acceleration a_i + Lambda_i^-1 f_i, a_i = J_i M_i^-1 (tau_i - h_i) + Jdot_i qdot_i: the palm
-    /// is a body of inertia Lambda_i pushed by hSigma_i = Lambda_i a_i. The weld's beta_i is the
-    /// only term the first paper's weld lacks; it enters as hSigma_i - Lambda_i beta_i (the kernel
-    /// then returns xdd_i - beta_i, and the true h_i = Lambda_i xdd_i - hSigma_i). Returns false,
-    /// writing nothing, when an arm's M_i or J_i M_i^-1 J_i^T is not safely positive definite.
-    ///
-    /// Per arm: M_i = L D L^T; [X_i, qdd0_i] = M_i^-1 [J_i^T, tau_i - h_i] (X_i = M_i^-1 J_i^T);
-    /// Lambda_i^-1 = J_i X_i = F E F^T; [Lambda_i, hSigma_i - Lambda_i beta_i] =
-    /// (Lambda_i^-1)^-1 [I, a_i - beta_i]; after the kernel, qdd_i = qdd0_i + X_i h_i. Each step
-    /// runs over both arms before the next: the arms' serial chains (pivot after pivot) are
-    /// independent, so the processor overlaps them.
+    /// WeldSolver::structured: coopdyn::JointSpaceGrasp (docs/dynamics.md, "Arms in joint space").
+    /// Arm i alone, with a wrench f_i on its palm, has the palm acceleration a_i + Lambda_i^-1 f_i,
+    /// a_i = J_i M_i^-1 (tau_i - h_i) + Jdot_i qdot_i: the palm is a body of inertia Lambda_i =
+    /// (J_i M_i^-1 J_i^T)^-1 pushed by hSigma_i = Lambda_i a_i, and the first paper's structured
+    /// kernel solves the weld; the weld's Baumgarte term beta_i is its stabilisation. Returns
+    /// false, writing nothing, when an arm's M_i or J_i M_i^-1 J_i^T is not safely positive
+    /// definite.
     bool solve_structured(const PlantState& state, const ArmPairTerms& terms, const WeldGeometry& weld,
                           const JointVector& tau, const Vector6d& box_wrench, RigidGraspSolution& out) const
     {
-        using Matrix6d = Eigen::Matrix<double, 6, 6>;
-        // The right-hand sides side by side, row-major: FixedLdlt::solve_in_place then updates
-        // a whole row per step, vectorised across them. One padding column: whole rows of 8 fill
-        // the vector registers.
-        constexpr int columns = 8, free_column = 6;
-        std::array<coopdyn::FixedLdlt<double, arm_joints>, palms> arm_factor;
-        std::array<Eigen::Matrix<double, arm_joints, columns, Eigen::RowMajor>, palms> joint_solution;  // [X_i, qdd0_i, 0]
-        std::array<coopdyn::FixedLdlt<double, 6>, palms> mobility_factor;
-        std::array<Eigen::Matrix<double, 6, columns, Eigen::RowMajor>, palms> palm_solution;  // [Lambda_i, hSigma_i - Lambda_i beta_i, 0]
         for (std::size_t i = 0; i < palms; ++i) {
-            if (!arm_factor[i].compute(terms[i].inertia)) {
+            const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(i);
+            if (!grasp_.set_arm(static_cast<Eigen::Index>(i), terms[i].inertia, terms[i].jacobian,
+                                tau.segment<arm_joints>(joint) - terms[i].bias, terms[i].jacobian_rate_qdot,
+                                weld.stabilisation[i])) {
                 return false;
             }
-            const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(i);
-            joint_solution[i].leftCols<6>() = terms[i].jacobian.transpose();
-            joint_solution[i].col(free_column) = tau.segment<arm_joints>(joint) - terms[i].bias;
-            joint_solution[i].col(columns - 1).setZero();
-        }
-        for (std::size_t i = 0; i < palms; ++i) {
-            arm_factor[i].solve_in_place(joint_solution[i]);
-        }
-        for (std::size_t i = 0; i < palms; ++i) {
-            // Lambda_i^-1 = J_i X_i, as seven rank-one updates: each a multiply-add of whole
-            // columns (Eigen's lazy product at this size goes element by element).
-            Matrix6d mobility = terms[i].jacobian.col(0) * joint_solution[i].row(0).head<6>();
-            for (Eigen::Index k = 1; k < arm_joints; ++k) {
-                mobility.noalias() += terms[i].jacobian.col(k) * joint_solution[i].row(k).head<6>();
-            }
-            // The library's pivot policy (coopdyn/numerics/pivot_policy.hpp, docs/numerics.md).
-            if (!mobility_factor[i].compute(mobility) ||
-                !coopdyn::regular_pivots(mobility_factor[i].pivots(), mobility.diagonal().maxCoeff())) {
-                return false;  // the palm cannot move in every direction: the arm is singular
-            }
-            palm_solution[i].leftCols<6>().setIdentity();
-            palm_solution[i].col(free_column) = terms[i].jacobian * joint_solution[i].col(free_column) +
-                                                terms[i].jacobian_rate_qdot - weld.stabilisation[i];
-            palm_solution[i].col(columns - 1).setZero();
-        }
-        std::array<coopdyn::ArticulatedInertia<double>, palms> palm_inertia;  // Lambda_i
-        Eigen::Matrix<double, 6 * (palms + 1), 1> h_sigma, accelerations, wrenches;
-        for (std::size_t i = 0; i < palms; ++i) {
-            mobility_factor[i].solve_in_place(palm_solution[i]);
-            palm_inertia[i] = coopdyn::ArticulatedInertia<double>(palm_solution[i].leftCols<6>());
-            h_sigma.segment<6>(6 + 6 * static_cast<Eigen::Index>(i)) = palm_solution[i].col(free_column);
         }
         const Eigen::Matrix3d& inertia_world = weld.box_inertia_world;
         const Eigen::Vector3d& w = state.box_angular_velocity;
-        h_sigma.head<6>() = box_free_wrench(inertia_world, w, box_wrench);
-        coopdyn::interaction_wrenches(coopdyn::CentralInertia<double>(box_.mass, inertia_world), palm_inertia,
-                                      weld.offset, w, h_sigma, accelerations, wrenches);
-        out.box_acceleration = accelerations.head<6>();
+        // solve() writes qdd only when it succeeds.
+        if (!grasp_.solve(coopdyn::CentralInertia<double>(box_.mass, inertia_world), weld.offset, w,
+                          box_free_wrench(inertia_world, w, box_wrench), out.joint_acceleration)) {
+            return false;  // a palm cannot move in every direction: the arm is singular
+        }
+        out.box_acceleration = grasp_.object_acceleration();
         for (std::size_t i = 0; i < palms; ++i) {
-            const Eigen::Index joint = arm_joints * static_cast<Eigen::Index>(i);
-            const Vector6d on_palm = wrenches.segment<6>(6 + 6 * static_cast<Eigen::Index>(i));  // h_i: the box's wrench on palm i
-            // qdd_i = M_i^-1 (tau_i - h_i + J_i^T h_i) = qdd0_i + X_i h_i
-            out.joint_acceleration.segment<arm_joints>(joint) =
-                joint_solution[i].col(free_column) + joint_solution[i].leftCols<6>() * on_palm;
-            out.contact_wrench[i] = -on_palm;
+            out.contact_wrench[i] = -grasp_.palm_wrench(static_cast<Eigen::Index>(i));  // h_i: the box's wrench on palm i
         }
         return true;
     }
@@ -528,9 +438,9 @@ private:
         return next;
     }
 
-    const DualArmBoxModel& world_;
     std::array<Lwr4Dynamics, palms> arms_;
     BoxInertia box_;
+    Eigen::Vector3d gravity_;
     double period_;
     double time_ = 0.0;
     double stiffness_;
@@ -541,6 +451,8 @@ private:
     RigidGraspSolution solution_;
     std::array<Eigen::Vector3d, palms> weld_point_{};
     std::array<Eigen::Quaterniond, palms> weld_rotation_{};
+    /// WeldSolver::structured's workspace (sized once; scratch, hence mutable in the const solves).
+    mutable coopdyn::JointSpaceGrasp<double, palms, arm_joints> grasp_;
 };
 
 }  // namespace box_example

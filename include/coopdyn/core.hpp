@@ -22,6 +22,7 @@
 #include "coopdyn/dynamics/energy.hpp"
 #include "coopdyn/dynamics/input_check.hpp"
 #include "coopdyn/dynamics/interaction_wrenches.hpp"
+#include "coopdyn/dynamics/joint_space_grasp.hpp"
 #include "coopdyn/dynamics/simulator.hpp"
 #include "coopdyn/dynamics/udwadia_kalaba.hpp"
 #include "coopdyn/coordination/kinematic_coordination.hpp"

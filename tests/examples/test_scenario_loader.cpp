@@ -1,4 +1,4 @@
-// Tests of the scenario loader of the two-arm beam example (examples/scenario.hpp, on the shared
+// Tests of the scenario loader of the two-arm beam example (examples/beam/scenario.hpp, on the shared
 // examples/common/json_reader.hpp): every shipped scenario loads, and each kind of malformed or
 // physically invalid file is refused with a message that names the JSON path of the field and what
 // is wrong with it, nlohmann-json's own errors (e.g. a number too large for a double) included.

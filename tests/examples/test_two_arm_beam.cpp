@@ -1,4 +1,4 @@
-// End-to-end tests of the main job, examples/two_arm_beam: the program is run as a user would run
+// End-to-end tests of the main job, examples/beam/two_arm_beam: the program is run as a user would run
 // it (short durations), its CSV output is parsed, and the identified apparent impedance is checked
 // against docs/analysis.md (the paper's (56), (59), (61)). Also: the CSV logs are complete and
 // consistent (total = internal + external, internal wrenches do no work on the object), the
@@ -327,7 +327,7 @@ TEST(TwoArmBeam, ErrorsGiveMessagesAndExitCodes)
     }
     // The default scenario is shown relative to the repository, not as the build machine's path
     // (it is still found at run time: the other tests run without --scenario).
-    EXPECT_TRUE(contains(help.output, "--scenario FILE=examples/scenarios/beam.json")) << help.output;
+    EXPECT_TRUE(contains(help.output, "--scenario FILE=examples/beam/scenarios/beam.json")) << help.output;
     EXPECT_FALSE(contains(help.output, scenario_dir)) << help.output;
 
     const ProgramRun unknown = run_program(directory, "--frobnicate");

@@ -14,7 +14,7 @@
 //   scenarios/beam.json: arms[0].end_effector.mass: must be positive and finite, got -10
 #pragma once
 
-#include "common/json_reader.hpp"
+#include "../common/json_reader.hpp"
 
 #include <coopdyn/coopdyn.hpp>
 
@@ -180,32 +180,9 @@ inline coopdyn::ImpedanceEndEffector<double> end_effector(const Reader& reader, 
     return result;
 }
 
-/// The beam's schema, on a parsed document.
-inline Scenario read_scenario(const Reader& reader, const json& document)
+/// "object": the object's mass and inertia, and its pose, the equilibrium.
+inline void read_object(const Reader& reader, const json& document, Scenario& scenario)
 {
-    Scenario scenario;
-    scenario.source = reader.source();
-    reader.expect_object(document, "");
-    reader.only_keys(document, "",
-                     {"name", "description", "time_step", "gravity", "object", "arm_count", "arms",
-                      "load_distribution", "excitation", "paper"});
-    // The name prefixes the output files: a plain file name, checked here, not when writing.
-    scenario.name = reader.name(reader.required(document, "", "name"), "name");
-    if (const json* description = reader.optional(document, "description")) {
-        scenario.description = reader.string(*description, "description");
-    }
-    if (const json* time_step = reader.optional(document, "time_step")) {
-        scenario.time_step = reader.positive(*time_step, "time_step");
-        if (scenario.time_step > 0.1) {
-            reader.fail("time_step", "must be at most 0.1 s (the experiments log every step), got " +
-                                         std::to_string(scenario.time_step));
-        }
-    }
-    if (const json* gravity = reader.optional(document, "gravity")) {
-        scenario.gravity = reader.vector3(*gravity, "gravity");
-    }
-
-    // --- object
     const json& object = reader.required(document, "", "object");
     reader.expect_object(object, "object");
     reader.only_keys(object, "object", {"mass", "inertia_body", "position", "orientation"});
@@ -213,8 +190,11 @@ inline Scenario read_scenario(const Reader& reader, const json& document)
     scenario.object.inertia_body = reader.matrix3(reader.required(object, "object", "inertia_body"), "object.inertia_body");
     scenario.equilibrium = pose(reader, object, "object");
     physical(reader, [&] { scenario.object.validate(); });
+}
 
-    // --- arms
+/// "arm_count" and "arms": each arm's grasp pose on the object and its end-effector.
+inline void read_arms(const Reader& reader, const json& document, Scenario& scenario)
+{
     const long long arm_count = reader.integer(reader.required(document, "", "arm_count"), "arm_count");
     if (arm_count < 1) {
         reader.fail("arm_count", "must be at least 1, got " + std::to_string(arm_count));
@@ -240,9 +220,12 @@ inline Scenario read_scenario(const Reader& reader, const json& document)
         physical(reader, [&] { result.end_effector.validate(static_cast<coopdyn::Index>(i)); });
         scenario.arms.push_back(result);
     }
-    const auto count = static_cast<std::size_t>(arm_count);
+}
 
-    // --- load distribution weights
+/// "load_distribution" (optional): the weights of (25)-(26), one mass and one 3x3 inertia weight per arm.
+inline void read_load_distribution(const Reader& reader, const json& document, Scenario& scenario)
+{
+    const std::size_t count = scenario.arms.size();
     if (const json* weights = reader.optional(document, "load_distribution")) {
         const std::string path = "load_distribution";
         reader.expect_object(*weights, path);
@@ -268,8 +251,11 @@ inline Scenario read_scenario(const Reader& reader, const json& document)
                 reader.matrix3(inertias[i], index_path(join_path(path, "inertia_weights"), i));
         }
     }
+}
 
-    // --- excitation defaults
+/// "excitation" (optional): the default amplitudes.
+inline void read_excitation(const Reader& reader, const json& document, Scenario& scenario)
+{
     if (const json* excitation = reader.optional(document, "excitation")) {
         reader.expect_object(*excitation, "excitation");
         reader.only_keys(*excitation, "excitation", {"force", "torque"});
@@ -280,8 +266,11 @@ inline Scenario read_scenario(const Reader& reader, const json& document)
             scenario.excitation.torque = reader.positive(*torque, "excitation.torque");
         }
     }
+}
 
-    // --- paper reference values
+/// "paper" (optional): the paper's reference values.
+inline void read_paper(const Reader& reader, const json& document, Scenario& scenario)
+{
     if (const json* paper = reader.optional(document, "paper")) {
         reader.expect_object(*paper, "paper");
         reader.only_keys(*paper, "paper", {"source", "translation_x", "rotation_z", "se3"});
@@ -300,8 +289,12 @@ inline Scenario read_scenario(const Reader& reader, const json& document)
         }
         scenario.paper = reference;
     }
+}
 
-    // --- the whole set-up, through coopdyn's own validation
+/// The whole set-up, through coopdyn's own validation (the Model and LoadDistribution
+/// constructors), and a stable equilibrium: Theorem 2's K and D positive definite.
+inline void check_setup(const Reader& reader, const Scenario& scenario)
+{
     physical(reader, [&] {
         const coopdyn::ImpedanceModelX model(scenario.object, scenario.arms, scenario.gravity);
         const auto distribution =
@@ -338,6 +331,39 @@ inline Scenario read_scenario(const Reader& reader, const json& document)
                                     "): the object's motion is undamped; raise the arms' damping");
         }
     });
+}
+
+/// The beam's schema, on a parsed document.
+inline Scenario read_scenario(const Reader& reader, const json& document)
+{
+    Scenario scenario;
+    scenario.source = reader.source();
+    reader.expect_object(document, "");
+    reader.only_keys(document, "",
+                     {"name", "description", "time_step", "gravity", "object", "arm_count", "arms",
+                      "load_distribution", "excitation", "paper"});
+    // The name prefixes the output files: a plain file name, checked here, not when writing.
+    scenario.name = reader.name(reader.required(document, "", "name"), "name");
+    if (const json* description = reader.optional(document, "description")) {
+        scenario.description = reader.string(*description, "description");
+    }
+    if (const json* time_step = reader.optional(document, "time_step")) {
+        scenario.time_step = reader.positive(*time_step, "time_step");
+        if (scenario.time_step > 0.1) {
+            reader.fail("time_step", "must be at most 0.1 s (the experiments log every step), got " +
+                                         std::to_string(scenario.time_step));
+        }
+    }
+    if (const json* gravity = reader.optional(document, "gravity")) {
+        scenario.gravity = reader.vector3(*gravity, "gravity");
+    }
+
+    read_object(reader, document, scenario);
+    read_arms(reader, document, scenario);
+    read_load_distribution(reader, document, scenario);
+    read_excitation(reader, document, scenario);
+    read_paper(reader, document, scenario);
+    check_setup(reader, scenario);
     return scenario;
 }
 

@@ -19,10 +19,11 @@
 
 #include "beam_experiment.hpp"
 #include "beam_report.hpp"
-#include "common/cli.hpp"
-#include "common/csv_table.hpp"
-#include "common/plotting.hpp"
 #include "scenario.hpp"
+
+#include "../common/cli.hpp"
+#include "../common/csv_table.hpp"
+#include "../common/plotting.hpp"
 
 #include <coopdyn/coopdyn.hpp>
 
@@ -41,7 +42,7 @@
 #include <vector>
 
 #ifndef COOPDYN_SCENARIO_DIR
-#define COOPDYN_SCENARIO_DIR "examples/scenarios"
+#define COOPDYN_SCENARIO_DIR "examples/beam/scenarios"
 #endif
 
 namespace {
@@ -55,11 +56,11 @@ using example_common::exit_scenario;
 using example_common::exit_usage;
 
 /// The default --scenario as --help shows it (relative to the repository root).
-const char* const shipped_scenario = "examples/scenarios/beam.json";
+const char* const shipped_scenario = "examples/beam/scenarios/beam.json";
 
 /// The file of the default --scenario: the shipped beam in the source tree the program was built
 /// from (COOPDYN_SCENARIO_DIR), wherever the program is run from; if that tree is gone,
-/// examples/scenarios/beam.json relative to the working directory (the repository root).
+/// examples/beam/scenarios/beam.json relative to the working directory (the repository root).
 std::string default_scenario_file()
 {
     const std::string built = std::string(COOPDYN_SCENARIO_DIR) + "/beam.json";
@@ -181,9 +182,18 @@ int run_experiments(const Scenario& scenario, const CommandLine& command, const 
     return example_common::render_plots("two_arm_beam", plots) ? 0 : exit_failure;
 }
 
-/// --identify-log: the identification alone, on a log written by this program or by a real
-/// experiment (docs/two-arm-beam.md, "Identifying real logs").
-int identify_log(const CommandLine& command, const Scenario* scenario)
+/// The signals of a log for --identify-log: the sample period, the wrench h and displacement x
+/// (6 x samples) and the axes that have both, and the columns' prefix (ident_ or meas_).
+struct LogSignals {
+    double period = 0.0;
+    Eigen::Index samples = 0;
+    std::string prefix;
+    Eigen::Matrix<double, 6, Eigen::Dynamic> h, x;
+    std::array<bool, 6> axes{};
+};
+
+/// Reads and checks the log of --identify-log (uniform time stamps, at least one usable axis).
+LogSignals read_log(const CommandLine& command)
 {
     const CsvTable table(command.identify_log);
     if (!table.has("time")) {
@@ -212,9 +222,15 @@ int identify_log(const CommandLine& command, const Scenario* scenario)
         displacement[axis] = prefix + displacement_names[axis];
     }
     const auto samples = static_cast<Eigen::Index>(time.size());
-    Eigen::Matrix<double, 6, Eigen::Dynamic> h = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, samples);
-    Eigen::Matrix<double, 6, Eigen::Dynamic> x = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, samples);
-    std::array<bool, 6> axes{};
+    LogSignals signals;
+    signals.period = period;
+    signals.samples = samples;
+    signals.prefix = prefix;
+    Eigen::Matrix<double, 6, Eigen::Dynamic>& h = signals.h;
+    Eigen::Matrix<double, 6, Eigen::Dynamic>& x = signals.x;
+    h.setZero(6, samples);
+    x.setZero(6, samples);
+    std::array<bool, 6>& axes = signals.axes;
     for (std::size_t axis = 0; axis < 6; ++axis) {
         if (!table.has(wrench[axis]) || !table.has(displacement[axis])) {
             continue;
@@ -238,16 +254,34 @@ int identify_log(const CommandLine& command, const Scenario* scenario)
                                  "fx .. " + prefix + "tz) and a displacement column (" + prefix + "disp_x .. " +
                                  prefix + "rot_z) with finite values");
     }
-    const coopdyn::DiagonalImpedanceFit fit = coopdyn::identify_diagonal_impedance(x, h, period, {}, axes);
+    return signals;
+}
+
+/// Theorem 2's impedance at the scenario's equilibrium.
+coopdyn::ApparentImpedance<double> nominal_impedance(const Scenario& scenario)
+{
+    const coopdyn::ImpedanceModelX model(scenario.object, scenario.arms, scenario.gravity);
+    coopdyn::Data<coopdyn::ImpedanceModelX> data(model);
+    coopdyn::RigidBodyState<double> state;
+    state.pose = scenario.equilibrium;
+    coopdyn::grasp_kinematics(model, data, state);
+    return coopdyn::apparent_impedance(model, data);
+}
+
+/// --identify-log: the identification alone, on a log written by this program or by a real
+/// experiment (docs/two-arm-beam.md, "Identifying real logs").
+int identify_log(const CommandLine& command, const Scenario* scenario)
+{
+    const LogSignals signals = read_log(command);
+    const double period = signals.period;
+    const Eigen::Index samples = signals.samples;
+    const std::string& prefix = signals.prefix;
+    const std::array<bool, 6>& axes = signals.axes;
+    const coopdyn::DiagonalImpedanceFit fit = coopdyn::identify_diagonal_impedance(signals.x, signals.h, period, {}, axes);
 
     coopdyn::ApparentImpedance<double> nominal;
     if (scenario != nullptr) {
-        const coopdyn::ImpedanceModelX model(scenario->object, scenario->arms, scenario->gravity);
-        coopdyn::Data<coopdyn::ImpedanceModelX> data(model);
-        coopdyn::RigidBodyState<double> state;
-        state.pose = scenario->equilibrium;
-        coopdyn::grasp_kinematics(model, data, state);
-        nominal = coopdyn::apparent_impedance(model, data);
+        nominal = nominal_impedance(*scenario);
     }
     std::printf("identification of %s: %lld samples at %.6g Hz, columns %s*\n", command.identify_log.c_str(),
                 static_cast<long long>(samples), 1.0 / period, prefix.c_str());
@@ -295,21 +329,22 @@ int list_scenarios()
     return 0;
 }
 
-}  // namespace
+/// The command line's options and flags that are read after parsing.
+struct ParsedFlags {
+    CLI::Option* scenario = nullptr;
+    CLI::Option* lowpass = nullptr;
+    bool single_run = false;
+    bool no_plots = false;
+    bool quiet = false;
+};
 
-int main(int argc, char** argv)
+/// The scenario's and the experiments' options: --scenario .. --runs.
+void add_experiment_options(CLI::App& app, CommandLine& command, ParsedFlags& flags)
 {
-    CommandLine command;
-    CLI::App app{"two_arm_beam: the paper's two-arm beam experiment (Erhart & Hirche 2016, Section V) in "
-                 "simulation.\nTwo impedance-controlled arms hold a beam at 1 kHz; a disturbance wrench excites "
-                 "it; the apparent\nimpedance is identified from the logged wrench and pose and compared with the "
-                 "paper's values.\nWrites CSV logs, gnuplot scripts and PNG plots to --output. Docs: "
-                 "docs/two-arm-beam.md",
-                 "two_arm_beam"};
     app.option_defaults()->always_capture_default();
-    auto* scenario_option =
+    flags.scenario =
         app.add_option("--scenario", command.scenario,
-                       "Scenario file (JSON), see examples/scenarios/; default: the shipped beam scenario")
+                       "Scenario file (JSON), see examples/beam/scenarios/; default: the shipped beam scenario")
             ->type_name("FILE")
             ->default_str(shipped_scenario);
     app.add_option("--experiment", command.experiments, "Experiments to run: x, rot_z, se3 or all")
@@ -338,8 +373,12 @@ int main(int argc, char** argv)
                    "part (even orders); 1 = a single run. The CSV logs hold the +u run")
         ->check(CLI::IsMember({1, 2, 4}))
         ->type_name("N");
-    bool single_run = false;
-    app.add_flag("--single-run", single_run, "Same as --runs 1");
+}
+
+/// The sensors', output's and other modes' options: --single-run .. --list-scenarios.
+void add_output_options(CLI::App& app, CommandLine& command, ParsedFlags& flags)
+{
+    app.add_flag("--single-run", flags.single_run, "Same as --runs 1");
     app.add_flag("--noise", command.run.sensors.enabled,
                  "Realistic sensors: white noise on wrench and pose, and the force low-pass");
     app.add_option("--force-noise", command.run.sensors.force_rms, "Force noise with --noise [N RMS]")
@@ -350,7 +389,7 @@ int main(int argc, char** argv)
         ->check(example_common::non_negative_number());
     app.add_option("--angle-noise", command.run.sensors.angle_rms, "Angle noise with --noise [rad RMS]")
         ->check(example_common::non_negative_number());
-    auto* lowpass_option = app.add_option(
+    flags.lowpass = app.add_option(
         "--lowpass", command.run.sensors.lowpass_hz,
         "Cut-off of the first-order force low-pass with --noise [Hz] (0: none), at most the Nyquist limit "
         "1 / (2 time step): 500 Hz at 1 kHz")
@@ -359,65 +398,98 @@ int main(int argc, char** argv)
     app.add_option("--output", command.output, "Directory for the CSV logs and plots (created if missing)")
         ->check(example_common::output_folder())
         ->type_name("DIR");
-    bool no_plots = false;
-    app.add_flag("--no-plots", no_plots, "Do not run gnuplot (the scripts are still written)");
-    bool quiet = false;
-    app.add_flag("--quiet", quiet, "No progress line");
+    app.add_flag("--no-plots", flags.no_plots, "Do not run gnuplot (the scripts are still written)");
+    app.add_flag("--quiet", flags.quiet, "No progress line");
     app.add_option("--identify-log", command.identify_log,
                    "Only identify the impedance from an existing log (e.g. from real robots), no simulation; "
                    "columns: time, meas_fx..meas_tz, meas_disp_x..meas_rot_z (or ident_* when present)")
         ->type_name("CSV");
     app.add_flag("--list-scenarios", command.list_scenarios, "List the shipped scenario files and exit");
 
+}
+
+/// What the flags imply, once parsed.
+void finish_command_line(const ParsedFlags& flags, CommandLine& command)
+{
+    command.plots = !flags.no_plots;
+    if (flags.single_run) {
+        command.run.runs = 1;
+    }
+    command.run.progress = !flags.quiet;
+    command.scenario_given = flags.scenario->count() > 0;
+    if (!command.scenario_given) {
+        command.scenario = default_scenario_file();
+    }
+    command.lowpass_given = flags.lowpass->count() > 0;
+    command.run.excitation = command.excitation == "push" ? ExcitationKind::push : ExcitationKind::multisine;
+
+}
+
+/// The experiments --experiment selects, in the paper's order.
+std::vector<ExperimentSpec> selected_experiments(const CommandLine& command)
+{
+    std::vector<ExperimentSpec> specs;
+    for (const ExperimentSpec& spec : experiment_specs()) {
+        const bool selected =
+            std::find(command.experiments.begin(), command.experiments.end(), "all") != command.experiments.end() ||
+            std::find(command.experiments.begin(), command.experiments.end(), spec.id) != command.experiments.end();
+        if (selected) {
+            specs.push_back(spec);
+        }
+    }
+    return specs;
+}
+
+/// The parsed command: lists the scenarios, identifies a log or runs the experiments.
+int run_command(const CommandLine& command)
+{
+    if (command.list_scenarios) {
+        return list_scenarios();
+    }
+    Scenario scenario;
+    try {
+        scenario = load_scenario(command.scenario);
+    } catch (const ScenarioError& error) {
+        std::fprintf(stderr, "two_arm_beam: invalid scenario: %s\n", error.what());
+        return exit_scenario;
+    }
+    if (!command.identify_log.empty()) {
+        return identify_log(command, command.scenario_given ? &scenario : nullptr);
+    }
+    if (!options_fit_scenario(command, scenario)) {
+        return exit_usage;
+    }
+    const std::vector<ExperimentSpec> specs = selected_experiments(command);
+    switch (scenario.arm_count()) {
+    case 2: return run_experiments<coopdyn::ImpedanceModel<2>>(scenario, command, specs);
+    case 3: return run_experiments<coopdyn::ImpedanceModel<3>>(scenario, command, specs);
+    default: return run_experiments<coopdyn::ImpedanceModelX>(scenario, command, specs);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    CommandLine command;
+    CLI::App app{"two_arm_beam: the paper's two-arm beam experiment (Erhart & Hirche 2016, Section V) in "
+                 "simulation.\nTwo impedance-controlled arms hold a beam at 1 kHz; a disturbance wrench excites "
+                 "it; the apparent\nimpedance is identified from the logged wrench and pose and compared with the "
+                 "paper's values.\nWrites CSV logs, gnuplot scripts and PNG plots to --output. Docs: "
+                 "docs/two-arm-beam.md",
+                 "two_arm_beam"};
+    ParsedFlags flags;
+    add_experiment_options(app, command, flags);
+    add_output_options(app, command, flags);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& error) {
         const int code = app.exit(error);
         return code == 0 ? 0 : exit_usage;
     }
-    command.plots = !no_plots;
-    if (single_run) {
-        command.run.runs = 1;
-    }
-    command.run.progress = !quiet;
-    command.scenario_given = scenario_option->count() > 0;
-    if (!command.scenario_given) {
-        command.scenario = default_scenario_file();
-    }
-    command.lowpass_given = lowpass_option->count() > 0;
-    command.run.excitation = command.excitation == "push" ? ExcitationKind::push : ExcitationKind::multisine;
-
+    finish_command_line(flags, command);
     try {
-        if (command.list_scenarios) {
-            return list_scenarios();
-        }
-        Scenario scenario;
-        try {
-            scenario = load_scenario(command.scenario);
-        } catch (const ScenarioError& error) {
-            std::fprintf(stderr, "two_arm_beam: invalid scenario: %s\n", error.what());
-            return exit_scenario;
-        }
-        if (!command.identify_log.empty()) {
-            return identify_log(command, command.scenario_given ? &scenario : nullptr);
-        }
-        if (!options_fit_scenario(command, scenario)) {
-            return exit_usage;
-        }
-        std::vector<ExperimentSpec> specs;
-        for (const ExperimentSpec& spec : experiment_specs()) {
-            const bool selected =
-                std::find(command.experiments.begin(), command.experiments.end(), "all") != command.experiments.end() ||
-                std::find(command.experiments.begin(), command.experiments.end(), spec.id) != command.experiments.end();
-            if (selected) {
-                specs.push_back(spec);
-            }
-        }
-        switch (scenario.arm_count()) {
-        case 2: return run_experiments<coopdyn::ImpedanceModel<2>>(scenario, command, specs);
-        case 3: return run_experiments<coopdyn::ImpedanceModel<3>>(scenario, command, specs);
-        default: return run_experiments<coopdyn::ImpedanceModelX>(scenario, command, specs);
-        }
+        return run_command(command);
     } catch (const std::exception& error) {
         std::fprintf(stderr, "\ntwo_arm_beam: %s\n", error.what());
         return exit_failure;

@@ -3,9 +3,10 @@
 #pragma once
 
 #include "beam_experiment.hpp"
-#include "common/csv_table.hpp"
-#include "common/plotting.hpp"
 #include "scenario.hpp"
+
+#include "../common/csv_table.hpp"
+#include "../common/plotting.hpp"
 
 #include <array>
 #include <charconv>
@@ -131,12 +132,10 @@ inline std::string format_optional(const char* pattern, const std::optional<doub
 
 inline std::string percent(double fraction) { return format("%+.2g %%", 100.0 * fraction); }
 
-/// Prints the table of one experiment to stdout.
-inline void print_table(const Scenario& scenario, const ExperimentResult& result, const RunOptions& options,
-                        int number, int count)
+/// The table's heading: the experiment, the excitation and the sensors.
+inline void print_heading(const Scenario& scenario, const ExperimentResult& result, const RunOptions& options,
+                          int number, int count)
 {
-    const std::vector<ComparisonRow> rows = comparison_rows(scenario, result);
-    const PaperExperiment* paper = paper_reference(scenario, result.spec.id);
     std::printf("\nExperiment %d of %d: %s  [scenario %s]\n", number, count, result.spec.title.c_str(),
                 scenario.name.c_str());
     std::printf("  excitation: %s%s, force %.3g N, torque %.3g N m; log %.4g s at %.4g Hz%s; sensors: %s\n",
@@ -154,6 +153,13 @@ inline void print_table(const Scenario& scenario, const ExperimentResult& result
                                                          : std::string(", no low-pass")))
                           .c_str()
                     : "ideal (noise-free)");
+}
+
+/// The table's rows, each parameter against Theorem 2 (and the paper's values), and the fit's
+/// output errors. Returns the largest relative error against Theorem 2.
+inline double print_rows(const std::vector<ComparisonRow>& rows, const ExperimentResult& result,
+                         const PaperExperiment* paper)
+{
     const bool has_paper = paper != nullptr;
     std::printf("  %-6s %-18s %13s %13s %15s %11s %13s %11s\n", "axis", "parameter",
                 has_paper ? "paper nominal" : "", "nominal", "identified", "error", has_paper ? "paper ident." : "",
@@ -184,7 +190,13 @@ inline void print_table(const Scenario& scenario, const ExperimentResult& result
                     result.spec.id == "rot_z" ? "rad^2" : "m^2");
     }
     std::printf("\n");
-    // Verdict, per block (translations, rotations).
+    return worst;
+}
+
+/// The verdict against Theorem 2, per block (translations, rotations) when it fails.
+inline void print_verdict(const std::vector<ComparisonRow>& rows, const ExperimentResult& result, const RunOptions& options,
+                          double worst)
+{
     double worst_block[2] = {0.0, 0.0};
     int rotation_axes = 0;
     for (const ComparisonRow& row : rows) {
@@ -211,6 +223,11 @@ inline void print_table(const Scenario& scenario, const ExperimentResult& result
                         result.runs == 4 ? "" : ";\n  the default excitation runs (--runs 4) cancel it");
         }
     }
+}
+
+/// Whether the axes are decoupled (Corollary 1), and the motion in the axes not excited.
+inline void print_coupling(const ExperimentResult& result)
+{
     if (result.nominal_coupling < 1e-12) {
         std::printf("  axes decoupled: largest off-diagonal of M, D, K (Theorem 2, normalised) %.1g (Corollary 1)",
                     result.nominal_coupling);
@@ -223,6 +240,18 @@ inline void print_table(const Scenario& scenario, const ExperimentResult& result
         std::printf("; motion in the other axes %.2g of the excited one (energy ratio)", result.cross_axis_motion);
     }
     std::printf("\n");
+}
+
+/// Prints the table of one experiment to stdout.
+inline void print_table(const Scenario& scenario, const ExperimentResult& result, const RunOptions& options,
+                        int number, int count)
+{
+    const std::vector<ComparisonRow> rows = comparison_rows(scenario, result);
+    const PaperExperiment* paper = paper_reference(scenario, result.spec.id);
+    print_heading(scenario, result, options, number, count);
+    const double worst = print_rows(rows, result, paper);
+    print_verdict(rows, result, options, worst);
+    print_coupling(result);
 }
 
 // ---------------------------------------------------------------------------------------------
