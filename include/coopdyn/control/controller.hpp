@@ -487,7 +487,8 @@ controller_tick(const ControllerModel<Scalar, Arms, Joints, Edges>& model, Contr
         return data.torque;
     }
     data.inertia_factor.compute(input.inertia);
-    Llt<JointMatrix> inertia_factor;                       ///< M = L L^T: the input check that M is SPD
+    if (!regular_llt(data.inertia_factor)) {  // the pivot policy, numerics/pivot_policy.hpp
+        data.input_problem = ControllerInputProblem::inertia_not_positive_definite;
         detail::controller_no_control(data, ControlStatus::invalid_input, Eigen::Matrix<Scalar, Joints, 1>::Zero(model.joints()));
         return data.torque;
     }

@@ -38,6 +38,7 @@
 #include "coopdyn/config.hpp"
 #include "coopdyn/dynamics/interaction_wrenches.hpp"
 #include "coopdyn/numerics/fixed_ldlt.hpp"
+#include "coopdyn/numerics/fixed_llt.hpp"
 #include "coopdyn/numerics/pivot_policy.hpp"
 #include "coopdyn/spatial/inertia.hpp"
 
