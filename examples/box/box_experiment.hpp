@@ -14,6 +14,7 @@
 
 #include <coopdyn/control.hpp>
 #include <coopdyn/spatial/quaternion.hpp>
+#include <coopdyn/spatial/spatial_vector.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -118,6 +119,7 @@ struct TickLog {
     double predicted_margin = 0.0;                ///< tightest margin of the QP's wrenches, controller's friction
     std::array<double, palms> slip{};             ///< m, the box relative to each palm since the start
     coopdyn::ControlStatus status = coopdyn::ControlStatus::ok;
+    bool qp_ran = false;  ///< the contact QP ran this tick (not after an invalid_input or singular tick)
     coopdyn::QpStatus qp_status = coopdyn::QpStatus::solved;
     int qp_iterations = 0;
     JointVector motion_torque = JointVector::Zero();   ///< tau_u
@@ -191,7 +193,7 @@ void log_palms(const Plant& plant, const PalmFrames& palms_seen, const Controlle
         const Eigen::Matrix3d& rotation = palms_seen.rotation[i];
         const Vector6d& world = plant.measured_contact_wrench(palm);
         row.measured_world[i] = world;
-        row.measured[i] << rotation.transpose() * world.head<3>(), rotation.transpose() * world.tail<3>();
+        coopdyn::rotate_stack_back(rotation, world, row.measured[i]);  // [R^T f; R^T t], {w} to the palm frame
         row.measured_margin[i] = friction.margin(row.measured[i]);
         const Eigen::Vector3d now = rotation.transpose() * (box_position - palms_seen.position[i]);
         row.slip[i] = (now - box_in_palm[i]).head<2>().norm();
@@ -216,6 +218,7 @@ TickLog tick_log(const Plant& plant, const ControllerInput& input, const Desired
     row.box_acceleration = plant.box_acceleration().template head<3>();
     row.predicted_margin = data.tightest_margin;
     row.status = data.status;
+    row.qp_ran = data.qp_ran;
     row.qp_status = data.qp_status;
     row.qp_iterations = data.qp_iterations;
     row.motion_torque = data.motion_torque;

@@ -58,10 +58,13 @@ inline BoxSummary summarise(const BoxScenario& scenario, const std::string& plan
     s.min_true_margin = std::numeric_limits<double>::infinity();
     int rest_samples = 0;
     for (const TickLog& row : run.log) {
+        // A tick that computed no control (invalid_input, singular) has no prediction to compare:
+        // its outputs are reset to zero (docs/control.md, "After a failed tick").
+        const bool predicted = coopdyn::control_computed(row.status);
         const bool held_by_person = scenario.person_hold && row.time >= scenario.person_hold->start &&
                                     row.time < scenario.person_hold->start + scenario.person_hold->duration + 1.0;
         for (std::size_t i = 0; i < palms; ++i) {
-            if (row.time < rest_window) {
+            if (row.time < rest_window && predicted) {
                 s.rest_normal_predicted += row.predicted[i](2);
                 s.rest_normal_measured += row.measured[i](2);
                 ++rest_samples;
@@ -70,12 +73,14 @@ inline BoxSummary summarise(const BoxScenario& scenario, const std::string& plan
             s.peak_normal_measured = std::max(s.peak_normal_measured, row.measured[i](2));
             s.max_slip = std::max(s.max_slip, row.slip[i]);
             s.min_true_margin = std::min(s.min_true_margin, row.measured_margin[i]);
-            s.max_force_error =
-                std::max(s.max_force_error, (row.predicted[i].head<3>() - row.measured[i].head<3>()).norm());
+            if (predicted) {
+                s.max_force_error =
+                    std::max(s.max_force_error, (row.predicted[i].head<3>() - row.measured[i].head<3>()).norm());
+            }
             s.needed_normal =
                 std::max(s.needed_normal, row.measured[i].head<2>().norm() / scenario.plant_friction.sliding);
         }
-        s.qp_not_solved += row.qp_status == coopdyn::QpStatus::solved ? 0 : 1;
+        s.qp_not_solved += row.qp_ran && row.qp_status != coopdyn::QpStatus::solved ? 1 : 0;
         s.fallback_ticks += row.status == coopdyn::ControlStatus::friction_infeasible ? 1 : 0;
         if (!held_by_person) {
             s.max_tracking_error = std::max(s.max_tracking_error, (row.box_position - row.desired_position).norm());
@@ -153,7 +158,7 @@ inline void write_box_log(const std::filesystem::path& path, const ExperimentRun
         }
         csv.number(row.predicted_margin);
         csv.text(coopdyn::to_string(row.status));
-        csv.text(coopdyn::to_string(row.qp_status));
+        csv.text(row.qp_ran ? coopdyn::to_string(row.qp_status) : "not_run");  // no stale status
         csv.number(row.qp_iterations);
         numbers(row.motion_torque);
         numbers(row.squeeze_torque);
