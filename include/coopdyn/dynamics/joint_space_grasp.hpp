@@ -75,8 +75,13 @@ private:
 
 template <typename Scalar> class JointInertiaFactor<Scalar, Eigen::Dynamic> {
 public:
-    explicit JointInertiaFactor(Index joints) : factor_(joints) {}
-    void resize(Index joints) { factor_ = DynamicLlt<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>>(joints); }
+    explicit JointInertiaFactor(Index joints) : factor_(joints) { resize(joints); }
+    /// Sized by factorising the identity: Eigen's LLT(Index) leaves info() unset, and copying the
+    /// unset enum (as a std::vector of arms does) is undefined behaviour (UBSan reports it).
+    void resize(Index joints)
+    {
+        factor_.compute(Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>::Identity(joints, joints));
+    }
     template <typename Derived> bool compute(const Eigen::MatrixBase<Derived>& inertia) noexcept
     {
         factor_.compute(inertia);
