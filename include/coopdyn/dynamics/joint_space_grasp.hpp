@@ -260,7 +260,7 @@ private:
     };
 
     template <typename T>
-    using Storage = std::conditional_t<Arms == Eigen::Dynamic, std::vector<T>, std::array<T, Arms == Eigen::Dynamic ? 1 : Arms>>;
+    using Storage = std::conditional_t<Arms == Eigen::Dynamic, std::vector<T>, std::array<T, static_cast<std::size_t>(Arms == Eigen::Dynamic ? 1 : Arms)>>;
 
     void initialise(const std::vector<Index>& joint_counts)
     {
