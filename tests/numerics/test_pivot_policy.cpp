@@ -133,7 +133,7 @@ TEST(PivotPolicy, PassesEveryMatrixBelowTheConditionLimitAndRefusesOnlyAboveIt)
 
 template <int Size> void check_rank_deficient(int deficiency)
 {
-    std::mt19937 rng(900 + Size + deficiency);
+    std::mt19937 rng(static_cast<std::mt19937::result_type>(900 + Size + deficiency));
     std::uniform_real_distribution<double> uniform(-1.0, 1.0);
     for (int trial = 0; trial < 100; ++trial) {
         // X = [X1, X1 C]: its last k columns are combinations of the others (as a repeated or
