@@ -255,24 +255,40 @@ template <int N> void BM_BlockDiagonalDynamic(benchmark::State& state)
 // 2. Structured solver, general SPD 6x6 inertias.
 // ---------------------------------------------------------------------------------------------
 
-template <int N> void BM_GeneralKernel(benchmark::State& state)
+/// A case's general-SPD inputs in fixed-size matrices (N known at compile time).
+template <int N> struct FixedGeneralInputs {
+    explicit FixedGeneralInputs(const Case& c)
+        : object_inertia(c.object_general), inertias(c.general), r(c.r), omega(c.omega), h_sigma(c.h_sigma)
+    {
+    }
+    Eigen::Matrix<double, 6, 6> object_inertia;
+    coopdyn::PerArmMatrix6<double, N> inertias;
+    coopdyn::PerArmVector3<double, N> r;
+    Eigen::Vector3d omega;
+    coopdyn::FullStackVector<double, N> h_sigma;
+};
+
+/// Times `solve(inputs)` on case N's general-SPD inputs after checking it once against the dense
+/// reference.
+template <int N, typename Solve> void run_general(benchmark::State& state, const Solve& solve)
 {
     const Case& c = case_for(N);
-    const Eigen::Matrix<double, 6, 6> object_inertia = c.object_general;
-    const coopdyn::PerArmMatrix6<double, N> inertias = c.general;
-    const coopdyn::PerArmVector3<double, N> r = c.r;
-    const Eigen::Vector3d omega = c.omega;
-    const coopdyn::FullStackVector<double, N> h_sigma = c.h_sigma;
-
-    if (!check(state, coopdyn::interaction_wrenches(object_inertia, inertias, r, omega, h_sigma),
-               reference(general_system(c)))) {
+    const FixedGeneralInputs<N> inputs(c);
+    if (!check(state, solve(inputs), reference(general_system(c)))) {
         return;
     }
     for (auto _ : state) {
         benchmark::ClobberMemory();
-        auto h = coopdyn::interaction_wrenches(object_inertia, inertias, r, omega, h_sigma);
+        auto h = solve(inputs);
         benchmark::DoNotOptimize(h);
     }
+}
+
+template <int N> void BM_GeneralKernel(benchmark::State& state)
+{
+    run_general<N>(state, [](const FixedGeneralInputs<N>& in) {
+        return coopdyn::interaction_wrenches(in.object_inertia, in.inertias, in.r, in.omega, in.h_sigma);
+    });
 }
 
 template <int N> void BM_GeneralDynamic(benchmark::State& state)
@@ -341,22 +357,9 @@ coopdyn::FullStackVector<double, N> general_eigen_reference(const Eigen::Matrix<
 
 template <int N> void BM_GeneralEigenReference(benchmark::State& state)
 {
-    const Case& c = case_for(N);
-    const Eigen::Matrix<double, 6, 6> object_inertia = c.object_general;
-    const coopdyn::PerArmMatrix6<double, N> inertias = c.general;
-    const coopdyn::PerArmVector3<double, N> r = c.r;
-    const Eigen::Vector3d omega = c.omega;
-    const coopdyn::FullStackVector<double, N> h_sigma = c.h_sigma;
-
-    if (!check(state, general_eigen_reference<N>(object_inertia, inertias, r, omega, h_sigma),
-               reference(general_system(c)))) {
-        return;
-    }
-    for (auto _ : state) {
-        benchmark::ClobberMemory();
-        auto h = general_eigen_reference<N>(object_inertia, inertias, r, omega, h_sigma);
-        benchmark::DoNotOptimize(h);
-    }
+    run_general<N>(state, [](const FixedGeneralInputs<N>& in) {
+        return general_eigen_reference<N>(in.object_inertia, in.inertias, in.r, in.omega, in.h_sigma);
+    });
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -484,21 +484,21 @@ private:
     /// The lower triangle of matrix() (the upper one is left unwritten).
     COOPDYN_INLINE void write_lower(Matrix6<Scalar>& out) const noexcept
     {
-        out(0, 0) = linear_.xx;
-        out(1, 0) = linear_.yx;
-        out(2, 0) = linear_.zx;
-        out(1, 1) = linear_.yy;
-        out(2, 1) = linear_.zy;
-        out(2, 2) = linear_.zz;
+        write_lower(linear_, 0, out);
         out(3, 0) = coupling_(0, 0), out(3, 1) = coupling_(0, 1), out(3, 2) = coupling_(0, 2);
         out(4, 0) = coupling_(1, 0), out(4, 1) = coupling_(1, 1), out(4, 2) = coupling_(1, 2);
         out(5, 0) = coupling_(2, 0), out(5, 1) = coupling_(2, 1), out(5, 2) = coupling_(2, 2);
-        out(3, 3) = angular_.xx;
-        out(4, 3) = angular_.yx;
-        out(5, 3) = angular_.zx;
-        out(4, 4) = angular_.yy;
-        out(5, 4) = angular_.zy;
-        out(5, 5) = angular_.zz;
+        write_lower(angular_, 3, out);
+    }
+    /// The lower triangle of the diagonal block `block` at (corner, corner).
+    static COOPDYN_INLINE void write_lower(const Symmetric3<Scalar>& block, int corner, Matrix6<Scalar>& out) noexcept
+    {
+        out(corner, corner) = block.xx;
+        out(corner + 1, corner) = block.yx;
+        out(corner + 2, corner) = block.zx;
+        out(corner + 1, corner + 1) = block.yy;
+        out(corner + 2, corner + 1) = block.zy;
+        out(corner + 2, corner + 2) = block.zz;
     }
 
     Symmetric3<Scalar> linear_;
