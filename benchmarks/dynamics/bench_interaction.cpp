@@ -2,6 +2,9 @@
 //
 //   BM_BlockDiagonalKernel / BM_BlockDiagonalDynamic  structured solver, M_i = diag(m_i I3, J_i)
 //   BM_GeneralKernel / BM_GeneralDynamic              structured solver, general SPD 6x6 M_i
+//   BM_GeneralEigenReference                          the same structured solve written plainly with
+//                                                     Eigen (LLT<Matrix6d>, dense 6x6 products): the
+//                                                     yardstick of the general kernel (issue 20)
 //   BM_ModelTick / BM_ModelTickDynamic                interaction_dynamics(model, data, ...) with
 //                                                     ImpedanceEndEffector (kinematics, impedance
 //                                                     law, hSigma and the solve)
@@ -15,13 +18,15 @@
 // before its timed loop, against coopdyn::udwadia_kalaba (relative error <= 1e-9); a mismatch
 // aborts that benchmark with SkipWithError, so the numbers always belong to a correct solve.
 //
-// Ratios in the report are taken against BM_LiteralBaseline at the same N.
+// Ratios in the report are taken against BM_LiteralBaseline at the same N; the general kernel's
+// also against BM_GeneralEigenReference (docs/performance.md, "The general SPD kernel").
 
 
 #include <coopdyn/coopdyn.hpp>
 
 #include "sample_systems.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <benchmark/benchmark.h>
@@ -250,24 +255,40 @@ template <int N> void BM_BlockDiagonalDynamic(benchmark::State& state)
 // 2. Structured solver, general SPD 6x6 inertias.
 // ---------------------------------------------------------------------------------------------
 
-template <int N> void BM_GeneralKernel(benchmark::State& state)
+/// A case's general-SPD inputs in fixed-size matrices (N known at compile time).
+template <int N> struct FixedGeneralInputs {
+    explicit FixedGeneralInputs(const Case& c)
+        : object_inertia(c.object_general), inertias(c.general), r(c.r), omega(c.omega), h_sigma(c.h_sigma)
+    {
+    }
+    Eigen::Matrix<double, 6, 6> object_inertia;
+    coopdyn::PerArmMatrix6<double, N> inertias;
+    coopdyn::PerArmVector3<double, N> r;
+    Eigen::Vector3d omega;
+    coopdyn::FullStackVector<double, N> h_sigma;
+};
+
+/// Times `solve(inputs)` on case N's general-SPD inputs after checking it once against the dense
+/// reference.
+template <int N, typename Solve> void run_general(benchmark::State& state, const Solve& solve)
 {
     const Case& c = case_for(N);
-    const Eigen::Matrix<double, 6, 6> object_inertia = c.object_general;
-    const coopdyn::PerArmMatrix6<double, N> inertias = c.general;
-    const coopdyn::PerArmVector3<double, N> r = c.r;
-    const Eigen::Vector3d omega = c.omega;
-    const coopdyn::FullStackVector<double, N> h_sigma = c.h_sigma;
-
-    if (!check(state, coopdyn::interaction_wrenches(object_inertia, inertias, r, omega, h_sigma),
-               reference(general_system(c)))) {
+    const FixedGeneralInputs<N> inputs(c);
+    if (!check(state, solve(inputs), reference(general_system(c)))) {
         return;
     }
     for (auto _ : state) {
         benchmark::ClobberMemory();
-        auto h = coopdyn::interaction_wrenches(object_inertia, inertias, r, omega, h_sigma);
+        auto h = solve(inputs);
         benchmark::DoNotOptimize(h);
     }
+}
+
+template <int N> void BM_GeneralKernel(benchmark::State& state)
+{
+    run_general<N>(state, [](const FixedGeneralInputs<N>& in) {
+        return coopdyn::interaction_wrenches(in.object_inertia, in.inertias, in.r, in.omega, in.h_sigma);
+    });
 }
 
 template <int N> void BM_GeneralDynamic(benchmark::State& state)
@@ -286,6 +307,59 @@ template <int N> void BM_GeneralDynamic(benchmark::State& state)
         benchmark::DoNotOptimize(wrenches.data());
         benchmark::DoNotOptimize(accelerations.data());
     }
+}
+
+/// The structured solve in reduced coordinates (docs/dynamics.md) as a reader would write it with
+/// Eigen's fixed-size types, the yardstick of the general kernel: per arm an LLT<Matrix6d> of M_i
+/// for its unconstrained acceleration a_i = M_i^-1 hSigma_i, the composite inertia
+/// M_o + sum_i X_i^T M_i X_i from dense 6x6 products (X_i = G_i^T = [[I3, S(r_i)^T], [0, I3]])
+/// solved by LLT, then back-substitution xdd_i = X_i xdd_o + b_i, h_i = M_i (xdd_i - a_i)
+/// (Udwadia-Kalaba's constraint force). Returns h = [h_o; h_1; ...; h_N].
+template <int N>
+coopdyn::FullStackVector<double, N> general_eigen_reference(const Eigen::Matrix<double, 6, 6>& object_inertia,
+                                                            const coopdyn::PerArmMatrix6<double, N>& inertias,
+                                                            const coopdyn::PerArmVector3<double, N>& r,
+                                                            const Eigen::Vector3d& omega,
+                                                            const coopdyn::FullStackVector<double, N>& h_sigma)
+{
+    using Matrix6d = Eigen::Matrix<double, 6, 6>;
+    using Vector6d = Eigen::Matrix<double, 6, 1>;
+    std::array<Matrix6d, N> maps;                 // X_i
+    std::array<Vector6d, N> biases;               // b_i = [w x (w x r_i); 0]
+    std::array<Vector6d, N> unconstrained;        // a_i
+    Matrix6d composite = object_inertia;
+    Vector6d rhs = h_sigma.template head<6>();    // M_o a_o = hSigma_o
+    for (int i = 0; i < N; ++i) {
+        const Matrix6d inertia = inertias.template block<6, 6>(0, 6 * i);
+        const Eigen::Vector3d r_i = r.col(i);
+        Matrix6d& map = maps[static_cast<std::size_t>(i)];
+        map.setIdentity();
+        map.template topRightCorner<3, 3>() << 0, r_i(2), -r_i(1), -r_i(2), 0, r_i(0), r_i(1), -r_i(0), 0;
+        Vector6d& bias = biases[static_cast<std::size_t>(i)];
+        bias << omega.cross(omega.cross(r_i)), Eigen::Vector3d::Zero();
+        const Eigen::LLT<Matrix6d> factor(inertia);
+        Vector6d& a_i = unconstrained[static_cast<std::size_t>(i)];
+        a_i = factor.solve(h_sigma.template segment<6>(6 + 6 * i));
+        composite.noalias() += map.transpose() * inertia * map;
+        rhs.noalias() += map.transpose() * (inertia * (a_i - bias));
+    }
+    const Vector6d object_acceleration = Eigen::LLT<Matrix6d>(composite).solve(rhs);
+    coopdyn::FullStackVector<double, N> h;
+    h.template head<6>().noalias() = object_inertia * object_acceleration - h_sigma.template head<6>();
+    for (int i = 0; i < N; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        const Vector6d acceleration = maps[k] * object_acceleration + biases[k];
+        h.template segment<6>(6 + 6 * i).noalias() =
+            inertias.template block<6, 6>(0, 6 * i) * (acceleration - unconstrained[k]);
+    }
+    return h;
+}
+
+template <int N> void BM_GeneralEigenReference(benchmark::State& state)
+{
+    run_general<N>(state, [](const FixedGeneralInputs<N>& in) {
+        return general_eigen_reference<N>(in.object_inertia, in.inertias, in.r, in.omega, in.h_sigma);
+    });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -376,6 +450,8 @@ COOPDYN_BENCHMARK_ARMS(BM_BlockDiagonalKernel);
 COOPDYN_BENCHMARK_ARMS(BM_BlockDiagonalDynamic);
 COOPDYN_BENCHMARK_ARMS(BM_GeneralKernel);
 COOPDYN_BENCHMARK_ARMS(BM_GeneralDynamic);
+BENCHMARK_TEMPLATE(BM_GeneralEigenReference, 2);
+BENCHMARK_TEMPLATE(BM_GeneralEigenReference, 16);
 COOPDYN_BENCHMARK_ARMS(BM_ModelTick);
 COOPDYN_BENCHMARK_ARMS(BM_ModelTickDynamic);
 COOPDYN_BENCHMARK_ARMS(BM_UdwadiaKalaba);

@@ -133,8 +133,10 @@ public:
 
     /// Arm i's terms at the current state: M_i (n_i x n_i SPD, lower triangle read), J_i (6 x n_i,
     /// the palm's twist [v; w] in {w}), u_i = tau_i - c_i (n_i), Jdot_i qdot_i (6) and beta_i (6).
-    /// Factorises M_i and solves M_i^-1 [J_i^T, u_i]. Returns false when M_i is not positive
-    /// definite (solve() must not be called then).
+    /// Factorises M_i and keeps [J_i^T, u_i]; solve() solves M_i^-1 [J_i^T, u_i] for every arm in
+    /// one stage (so that the arms' independent substitutions overlap, as the factorisations of
+    /// consecutive set_arm calls do). Returns false when M_i is not positive definite (solve()
+    /// must not be called then).
     template <typename DerivedM, typename DerivedJ, typename DerivedU, typename DerivedRate, typename DerivedBeta>
     COOPDYN_INLINE bool set_arm(Index arm, const Eigen::MatrixBase<DerivedM>& inertia, const Eigen::MatrixBase<DerivedJ>& jacobian,
                                 const Eigen::MatrixBase<DerivedU>& free_torque,
@@ -154,7 +156,7 @@ public:
         work.solution.template leftCols<6>() = jacobian.transpose();
         work.solution.col(free_column) = free_torque;
         work.solution.col(columns - 1).setZero();
-        work.factor.solve_in_place(work.solution);  // [X_i, qdd0_i, 0]
+        work.substituted = false;
         return true;
     }
 
@@ -175,7 +177,13 @@ public:
         auto& joint_accelerations = const_cast<Eigen::MatrixBase<DerivedQdd>&>(joint_accelerations_out);
         COOPDYN_ASSERT(joint_accelerations.size() == total_joints_, "qdd must have sum n_i entries");
         // Each stage runs over every arm before the next: the arms' serial chains (pivot after
-        // pivot) are independent, so the processor overlaps them.
+        // pivot, substitution after substitution) are independent, so the processor overlaps them.
+        for (ArmWork& work : arms_) {
+            if (!work.substituted) {  // once per set_arm: solve() may be called again
+                work.factor.solve_in_place(work.solution);  // [X_i, qdd0_i, 0]
+                work.substituted = true;
+            }
+        }
         for (ArmWork& work : arms_) {
             // Lambda_i^-1 = J_i X_i, as n_i rank-one updates: each a multiply-add of whole columns
             // (Eigen's lazy product at this size goes element by element).
@@ -257,6 +265,7 @@ private:
         Eigen::Matrix<Scalar, 6, columns, Eigen::RowMajor> palm;                     // [Lambda_i, hSigma_i - Lambda_i beta_i, 0]
         Vector6 jacobian_rate_qdot;                                                  // Jdot_i qdot_i
         Vector6 stabilisation;                                                       // beta_i
+        bool substituted = false;  // solution holds M_i^-1 [J_i^T, u_i] (solve() did it since set_arm)
     };
 
     template <typename T>
