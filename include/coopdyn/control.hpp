@@ -9,4 +9,6 @@
 #include "coopdyn/control/controller_model.hpp"
 #include "coopdyn/control/friction.hpp"
 #include "coopdyn/control/projected_dynamics.hpp"
+#include "coopdyn/model/grasp_jacobians.hpp"
+#include "coopdyn/model/internal_wrench_basis.hpp"
 #include "coopdyn/numerics/qp_solver.hpp"
