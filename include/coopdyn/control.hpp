@@ -7,6 +7,7 @@
 #include "coopdyn/control/contact_wrenches.hpp"
 #include "coopdyn/control/controller.hpp"
 #include "coopdyn/control/controller_model.hpp"
+#include "coopdyn/control/controller_status.hpp"
 #include "coopdyn/control/friction.hpp"
 #include "coopdyn/control/projected_dynamics.hpp"
 #include "coopdyn/model/grasp_jacobians.hpp"
