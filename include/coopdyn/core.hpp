@@ -15,6 +15,7 @@
 #include "coopdyn/spatial/symmetric3.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
 #include "coopdyn/model/grasp.hpp"
+#include "coopdyn/model/grasp_inverse.hpp"
 #include "coopdyn/model/impedance_end_effector.hpp"
 #include "coopdyn/model/resolved_acceleration_end_effector.hpp"
 #include "coopdyn/model/rigid_object.hpp"

@@ -126,6 +126,29 @@ TEST(ProjectedDynamics, IdentitiesOfTheProjectionAndTheBasis)
     }
 }
 
+TEST(ProjectedDynamics, GraspPseudoInverseProductIsTheMoorePenroseInverse)
+{
+    // out -= G^+ F per tick (the unit-weight inverse of model/grasp_inverse.hpp) against an SVD
+    // pseudo-inverse of the literal G (24), and against the matrix grasp_pseudo_inverse forms.
+    Rng rng(9);
+    double worst_svd = 0.0, worst_matrix = 0.0;
+    for (const Case& c : cases) {
+        const JointSpaceSystem s = random_joint_space_system(c.arms, c.torso, rng);
+        Dynamics d = coopdyn::projected_dynamics(s.M, s.h, s.J, VectorXd(s.Jdot * s.qdot), s.qdot, s.r);
+        const MatrixXd G = coopdyn_test::literal_grasp_matrix(s.r);
+        const Vector6d wrench = coopdyn_test::random_vector6(rng, 10.0);
+        const VectorXd start = random_vector(6 * c.arms, rng);
+        VectorXd out = start;
+        d.subtract_grasp_pseudo_inverse_times(wrench, out);
+        const VectorXd applied = start - out;
+        worst_svd = std::max(worst_svd, relative(applied, pseudo_inverse(G) * wrench));
+        worst_matrix = std::max(worst_matrix, relative(applied, coopdyn::grasp_pseudo_inverse(s.r) * wrench));
+    }
+    std::printf("G^+ F per tick: against SVD %.2e, against grasp_pseudo_inverse %.2e\n", worst_svd, worst_matrix);
+    EXPECT_LT(worst_svd, 5e-15);
+    EXPECT_LT(worst_matrix, 1e-15);
+}
+
 /// Jx, Jc, P along the motion r(t) = R(omega t) r, J(t) = J + t Jdot.
 struct AlongMotion {
     MatrixXd Jx, Jc, P;

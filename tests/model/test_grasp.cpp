@@ -1,4 +1,6 @@
-// Tests of coopdyn/model/grasp.hpp (docs/model.md, paper (10)-(14), (23)-(24)).
+// Tests of coopdyn/model/grasp.hpp (docs/model.md, paper (10)-(14), (23)-(24)), with the grasp
+// operators applied per contact (G w, G^T y, Gdot v, Gdot^T y, G G^T) against the dense grasp
+// matrix and a central difference of it.
 //
 // Reference: exact rigid-body motion of an object, p_i(t) = p_o(t) + R(t) r_i_body, differentiated
 // numerically (fourth-order central stencils). The grasp matrix is checked through the power
@@ -6,6 +8,7 @@
 // block definition (14) entry by entry.
 
 #include "coopdyn/model/grasp.hpp"
+#include "coopdyn/model/grasp_inverse.hpp"
 
 #include "sample_systems.hpp"
 
@@ -13,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <iomanip>
 #include <random>
@@ -375,6 +379,82 @@ TEST(GraspKernels, FloatInstantiation)
     const Eigen::Matrix<float, 12, 1> b = coopdyn::constraint_bias(r, Eigen::Vector3f(0.0f, 1.0f, 2.0f));
     EXPECT_EQ(Eigen::MatrixXf(A.leftCols<6>()), Eigen::MatrixXf(-G.transpose()));
     EXPECT_TRUE(b.allFinite());
+}
+
+// --- Grasp operators applied per contact, against the dense grasp matrix ----------------------
+
+/// Gdot = d/dt G(R(t) r) at t = 0 for contacts turning with the object at omega: a fourth-order
+/// central difference of the literal grasp matrix (24) (no coopdyn code).
+Eigen::MatrixXd numerical_grasp_rate(const Eigen::MatrixXd& r, const Vector3d& omega)
+{
+    const double step = 1e-3;
+    const auto at = [&](double t) {
+        const Eigen::MatrixXd turned =
+            coopdyn_test::rotation_matrix(coopdyn_test::rotation_exponential(t * omega)) * r;
+        return coopdyn_test::literal_grasp_matrix(turned);
+    };
+    return (-at(2 * step) + 8 * at(step) - 8 * at(-step) + at(-2 * step)) / (12 * step);
+}
+
+/// The operators at r (3 x K, fixed rows) as dense results: G w, G^T y, Gdot v, Gdot^T y.
+struct OperatorResults {
+    Eigen::VectorXd grasp_w, grasp_transpose_y, rate_v, rate_transpose_y;
+};
+
+template <typename DerivedR>
+OperatorResults apply_operators(const Eigen::MatrixBase<DerivedR>& r, const Vector3d& omega, const Eigen::VectorXd& w,
+                                const Vector6d& y)
+{
+    OperatorResults result;
+    result.grasp_w = coopdyn::detail::grasp_times(r, w).vector();
+    result.grasp_transpose_y = Eigen::VectorXd::Zero(6 * r.cols());
+    coopdyn::detail::write_grasp_transpose_times(r, coopdyn::Motion<double>::from(y), result.grasp_transpose_y);
+    result.rate_v = coopdyn::detail::grasp_rate_times(r, omega, w);
+    result.rate_transpose_y = Eigen::VectorXd::Zero(6 * r.cols());
+    coopdyn::detail::grasp_rate_transpose_times(r, omega, y, result.rate_transpose_y);
+    return result;
+}
+
+TEST(GraspOperators, MatchTheDenseGraspMatrixAndItsRate)
+{
+    std::mt19937 rng(41005);
+    double worst_exact = 0.0, worst_rate = 0.0, worst_fixed = 0.0;
+    for (Eigen::Index arms = 2; arms <= 4; ++arms) {
+        for (int draw = 0; draw < 10; ++draw) {
+            const Eigen::MatrixXd r = coopdyn_test::off_centre_offsets(arms, rng);
+            const Eigen::Matrix3Xd offsets = r;
+            const Vector3d omega = random_vector(rng, 2.0);
+            const Eigen::VectorXd w = coopdyn_test::random_vector(6 * arms, rng);
+            const Vector6d y = random_vector6(rng);
+            const Eigen::MatrixXd G = coopdyn_test::literal_grasp_matrix(r);
+            const Eigen::MatrixXd G_rate = numerical_grasp_rate(r, omega);
+            const OperatorResults ops = apply_operators(offsets, omega, w, y);
+            const auto relative = [](const Eigen::MatrixXd& value, const Eigen::MatrixXd& reference) {
+                return (value - reference).norm() / std::max(reference.norm(), 1e-300);
+            };
+            worst_exact = std::max({worst_exact, relative(ops.grasp_w, G * w),
+                                    relative(ops.grasp_transpose_y, G.transpose() * y),
+                                    relative(coopdyn::detail::grasp_gram(G), G * G.transpose()),
+                                    relative(coopdyn::detail::grasp_gram_inertia(offsets).matrix(), G * G.transpose())});
+            worst_rate = std::max({worst_rate, relative(ops.rate_v, G_rate * w),
+                                   relative(ops.rate_transpose_y, G_rate.transpose() * y)});
+            if (arms == 3) {
+                const Eigen::Matrix3d fixed = r;
+                const OperatorResults fixed_ops = apply_operators(fixed, omega, w, y);
+                worst_fixed = std::max({worst_fixed, relative(fixed_ops.grasp_w, ops.grasp_w),
+                                        relative(fixed_ops.grasp_transpose_y, ops.grasp_transpose_y),
+                                        relative(fixed_ops.rate_v, ops.rate_v),
+                                        relative(fixed_ops.rate_transpose_y, ops.rate_transpose_y)});
+            }
+        }
+    }
+    RecordProperty("worst_products", scientific(worst_exact));
+    RecordProperty("worst_rates", scientific(worst_rate));
+    std::printf("grasp operators: products %.2e, rates against central differences %.2e, fixed vs dynamic %.2e\n",
+                worst_exact, worst_rate, worst_fixed);
+    EXPECT_LT(worst_exact, 1e-15);
+    EXPECT_LT(worst_rate, 1e-11);
+    EXPECT_LT(worst_fixed, 1e-15);
 }
 
 }  // namespace

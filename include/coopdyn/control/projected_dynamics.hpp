@@ -1,7 +1,10 @@
 /// \file
 /// \brief Projected inverse dynamics of K arms holding one object (the second paper, Lin et al.):
-/// the grasp's constraint and object Jacobians, an orthonormal basis of the internal wrenches, and
-/// the projected dynamics L(4), (13), (15), (26) with their exact derivative terms; docs/control.md.
+/// the projected dynamics L(4), (15), (26) with their exact derivative terms; docs/control.md. The
+/// grasp kinematics it builds on are in model/ and included here: the grasp operators G, G^T, Gdot
+/// (model/grasp.hpp), the pseudo-inverse G^+ (model/grasp_inverse.hpp), the object and constraint
+/// Jacobians Jx, Jc of L(13) and their rates (model/grasp_jacobians.hpp), the internal-wrench
+/// basis B (model/internal_wrench_basis.hpp).
 ///
 /// Inputs come from the user's kinematics/dynamics library: the joint inertia M (Q x Q, SPD), the
 /// bias h (Q; Coriolis, centrifugal, gravity), the stacked contact Jacobians J (6K x Q; rows
@@ -26,213 +29,17 @@
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/model/grasp.hpp"
+#include "coopdyn/model/grasp_inverse.hpp"
+#include "coopdyn/model/grasp_jacobians.hpp"
+#include "coopdyn/model/internal_wrench_basis.hpp"
 #include "coopdyn/numerics/fixed_llt.hpp"
 #include "coopdyn/numerics/householder_qr.hpp"
 #include "coopdyn/numerics/pivot_policy.hpp"
-#include "coopdyn/spatial/inertia.hpp"
-#include "coopdyn/spatial/skew.hpp"
 #include "coopdyn/spatial/spatial_vector.hpp"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Householder>
-#include <Eigen/LU>
-#include <Eigen/QR>
-
 #include <algorithm>
-#include <cmath>
-#include <limits>
 
 namespace coopdyn {
-
-/// 6(K - 1), the dimension of the internal wrenches of K contacts (Dynamic passes through).
-constexpr int internal_wrench_dimension(int arms) noexcept
-{
-    return arms == Eigen::Dynamic ? Eigen::Dynamic : 6 * (arms - 1);
-}
-
-namespace detail {
-
-/// G G^T (6 x 6, symmetric positive definite for any grasp: its lower-right block contains K I3).
-template <typename DerivedG> Matrix6<typename DerivedG::Scalar> grasp_gram(const Eigen::MatrixBase<DerivedG>& grasp)
-{
-    return grasp * grasp.transpose();
-}
-
-/// G G^T as the composite spatial inertia of unit masses with unit rotational inertia at the
-/// contacts: G_i diag(I3, I3) G_i^T = [[I, S(r_i)^T], [S(r_i), I + S(r_i) S(r_i)^T]], the shift of
-/// (31). Its solve is closed-form (SpatialInertia::solve), with no 6x6 factorisation.
-template <typename DerivedR>
-SpatialInertia<typename DerivedR::Scalar> grasp_gram_inertia(const Eigen::MatrixBase<DerivedR>& r) noexcept
-{
-    using Scalar = typename DerivedR::Scalar;
-    const CentralInertia<Scalar> unit(Scalar(1), Symmetric3<Scalar>::scaled_identity(Scalar(1)));
-    SpatialInertia<Scalar> result;
-    for (Index i = 0; i < r.cols(); ++i) {
-        result.add_shifted(unit, r.col(i));
-    }
-    return result;
-}
-
-/// G w = sum_i G_i w_i = sum_i [f_i; t_i + r_i x f_i] (24), per contact: G has 18 nonzeros of 36
-/// per block.
-template <typename DerivedR, typename DerivedW>
-Force<typename DerivedW::Scalar> grasp_times(const Eigen::MatrixBase<DerivedR>& r,
-                                             const Eigen::MatrixBase<DerivedW>& stacked) noexcept
-{
-    using Scalar = typename DerivedW::Scalar;
-    Force<Scalar> result;
-    for (Index i = 0; i < r.cols(); ++i) {
-        result += Force<Scalar>::from(stacked.template segment<6>(6 * i)).shifted(r.col(i));
-    }
-    return result;
-}
-
-/// G^T y: block i is G_i^T y = [v + w x r_i; w], the twist of contact i (10).
-template <typename DerivedR, typename DerivedOut>
-void write_grasp_transpose_times(const Eigen::MatrixBase<DerivedR>& r, const Motion<typename DerivedR::Scalar>& twist,
-                                 const Eigen::MatrixBase<DerivedOut>& result_out) noexcept
-{
-    auto& result = const_cast<Eigen::MatrixBase<DerivedOut>&>(result_out);
-    for (Index i = 0; i < r.cols(); ++i) {
-        twist.at_point(r.col(i)).write_to(result.template segment<6>(6 * i));
-    }
-}
-
-/// Gdot v = sum_i [0; rdot_i x v_i,linear] with rdot_i = omega x r_i (the contacts turn with the
-/// object; G_i = [[I, 0], [S(r_i), I]] so Gdot_i = [[0, 0], [S(rdot_i), 0]]).
-template <typename DerivedR, typename DerivedV>
-Vector6<typename DerivedV::Scalar> grasp_rate_times(const Eigen::MatrixBase<DerivedR>& r,
-                                                    const Vector3<typename DerivedV::Scalar>& omega,
-                                                    const Eigen::MatrixBase<DerivedV>& stacked) noexcept
-{
-    using Scalar = typename DerivedV::Scalar;
-    Vector6<Scalar> result = Vector6<Scalar>::Zero();
-    for (Index i = 0; i < r.cols(); ++i) {
-        const Vector3<Scalar> rate = omega.cross(Vector3<Scalar>(r.col(i)));
-        result.template tail<3>() += rate.cross(Vector3<Scalar>(stacked.template segment<3>(6 * i)));
-    }
-    return result;
-}
-
-/// Gdot^T y: block i = [S(rdot_i)^T y_angular; 0] = [y_angular x rdot_i; 0].
-template <typename DerivedR, typename DerivedOut>
-void grasp_rate_transpose_times(const Eigen::MatrixBase<DerivedR>& r, const Vector3<typename DerivedR::Scalar>& omega,
-                                const Vector6<typename DerivedR::Scalar>& y,
-                                const Eigen::MatrixBase<DerivedOut>& result_out) noexcept
-{
-    using Scalar = typename DerivedR::Scalar;
-    auto& result = const_cast<Eigen::MatrixBase<DerivedOut>&>(result_out);
-    for (Index i = 0; i < r.cols(); ++i) {
-        const Vector3<Scalar> rate = omega.cross(Vector3<Scalar>(r.col(i)));
-        result.template segment<3>(6 * i) = Vector3<Scalar>(y.template tail<3>()).cross(rate);
-        result.template segment<3>(6 * i + 3).setZero();
-    }
-}
-
-/// Whether B is orthonormal and G(r) B = 0, to 1e-8 (a debug check; allocates nothing).
-template <typename DerivedR, typename DerivedB>
-bool is_internal_basis(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedB>& B) noexcept
-{
-    using Scalar = typename DerivedB::Scalar;
-    using std::abs;
-    const Scalar tolerance(1e-8);
-    for (Index j = 0; j < B.cols(); ++j) {
-        for (Index k = 0; k <= j; ++k) {
-            const Scalar expected = j == k ? Scalar(1) : Scalar(0);
-            if (!(abs(B.col(j).dot(B.col(k)) - expected) < tolerance)) {
-                return false;
-            }
-        }
-        // G B_j = sum_i [f_i; t_i + r_i x f_i] (24), with r_i as a fixed 3-vector whatever r's type.
-        Vector6<Scalar> net = Vector6<Scalar>::Zero();
-        for (Index i = 0; i < r.cols(); ++i) {
-            const Vector3<Scalar> force = B.col(j).template segment<3>(6 * i);
-            net.template head<3>() += force;
-            net.template tail<3>() += B.col(j).template segment<3>(6 * i + 3) + Vector3<Scalar>(r.col(i)).cross(force);
-        }
-        if (!(net.norm() < tolerance * (Scalar(1) + r.norm()))) {
-            return false;
-        }
-    }
-    return true;
-}
-
-/// The closed-form basis of null(G), 6K x 6(K-1), not orthonormal: column 6(i-1)+a is the unit
-/// wrench e_a at contact i balanced by the same wrench moved to contact 1 and reversed,
-/// w_1 = -G(r_i - r_1) e_a, w_i = e_a, so that G_1 w_1 + G_i w_i = 0.
-template <typename DerivedR, typename DerivedOut>
-void closed_form_internal_basis(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedOut>& basis_out) noexcept
-{
-    using Scalar = typename DerivedR::Scalar;
-    auto& basis = const_cast<Eigen::MatrixBase<DerivedOut>&>(basis_out);
-    basis.setZero();
-    for (Index i = 1; i < r.cols(); ++i) {
-        const Vector3<Scalar> offset = r.col(i) - r.col(0);
-        for (int axis = 0; axis < 6; ++axis) {
-            const Index column = 6 * (i - 1) + axis;
-            basis(6 * i + axis, column) = Scalar(1);
-            basis.template block<6, 1>(0, column) = -(Force<Scalar>::from(Vector6<Scalar>::Unit(axis)).shifted(offset).vector());
-        }
-    }
-}
-
-}  // namespace detail
-
-/// \brief Object Jacobian Jx = (G G^T)^-1 G J (6 x Q): the object's twist xdot_o = Jx qdot while
-/// the grasp holds (the least-squares rigid motion of the contacts in general).
-/// \param r 3 x K contact points relative to the object's centre, {w}.
-/// \param J 6K x Q stacked contact Jacobians.
-template <typename DerivedR, typename DerivedJ>
-Eigen::Matrix<typename DerivedJ::Scalar, 6, DerivedJ::ColsAtCompileTime>
-object_jacobian(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedJ>& J)
-{
-    COOPDYN_ASSERT(J.rows() == 6 * r.cols(), "J must have 6K rows");
-    const auto grasp = grasp_matrix(r);
-    return detail::grasp_gram(grasp).llt().solve(grasp * J);
-}
-
-/// \brief Constraint Jacobian Jc = (I - G^+ G) J = J - G^T Jx (6K x Q), L(13): Jc qdot = 0 says
-/// the contacts move as one rigid body. Row block i is contact i's twist minus the twist the
-/// object's motion Jx qdot gives point r_i. Rank 6K - 6 (errata E10).
-template <typename DerivedR, typename DerivedJ>
-Eigen::Matrix<typename DerivedJ::Scalar, DerivedJ::RowsAtCompileTime, DerivedJ::ColsAtCompileTime>
-constraint_jacobian(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<DerivedJ>& J)
-{
-    const auto grasp = grasp_matrix(r);
-    const Eigen::Matrix<typename DerivedJ::Scalar, 6, DerivedJ::ColsAtCompileTime> jx =
-        detail::grasp_gram(grasp).llt().solve(grasp * J);
-    Eigen::Matrix<typename DerivedJ::Scalar, DerivedJ::RowsAtCompileTime, DerivedJ::ColsAtCompileTime> result = J;
-    result.noalias() -= grasp.transpose() * jx;
-    return result;
-}
-
-/// \brief Orthonormal basis B (6K x 6(K-1), B^T B = I) of the internal wrenches, the null space of
-/// G: G B = 0. Orthonormal columns give weights and tolerances on the coordinates z of w = B z a
-/// physical scale (|B z| = |z|). Built from the closed-form basis (a wrench u at contact i
-/// balanced by -u moved to contact 1: w_1 = -G(r_i - r_1) u, w_i = u) by a Householder QR.
-/// \param r 3 x K contact points, K >= 2.
-template <typename DerivedR>
-Eigen::Matrix<typename DerivedR::Scalar, times_six(DerivedR::ColsAtCompileTime),
-              internal_wrench_dimension(DerivedR::ColsAtCompileTime)>
-internal_wrench_basis(const Eigen::MatrixBase<DerivedR>& r)
-{
-    using Scalar = typename DerivedR::Scalar;
-    constexpr int Arms = DerivedR::ColsAtCompileTime;
-    using Basis = Eigen::Matrix<Scalar, times_six(Arms), internal_wrench_dimension(Arms)>;
-    COOPDYN_ASSERT(r.cols() >= 2, "internal wrenches need at least two contacts");
-    const Index arms = r.cols();
-    Basis closed_form = Basis::Zero(6 * arms, 6 * (arms - 1));
-    detail::closed_form_internal_basis(r, closed_form);
-    Basis reflectors = Basis::Zero(6 * arms, 6 * (arms - 1));
-    Eigen::Matrix<Scalar, internal_wrench_dimension(Arms), 1> tau =
-        Eigen::Matrix<Scalar, internal_wrench_dimension(Arms), 1>::Zero(6 * (arms - 1));
-    Eigen::Matrix<Scalar, 1, internal_wrench_dimension(Arms)> workspace =
-        Eigen::Matrix<Scalar, 1, internal_wrench_dimension(Arms)>::Zero(6 * (arms - 1));
-    householder_qr_in_place(closed_form, reflectors, tau);
-    Basis basis(6 * arms, 6 * (arms - 1));
-    householder_q(reflectors, tau, basis, workspace);
-    return basis;
-}
 
 /// Outcome of a projected-dynamics evaluation. Not ok means a singular configuration: the
 /// results are not to be used (they are finite but meaningless).
@@ -344,11 +151,9 @@ public:
     void subtract_grasp_pseudo_inverse_times(const Eigen::MatrixBase<DerivedIn>& wrench,
                                              const Eigen::MatrixBase<DerivedOut>& out_) const noexcept
     {
-        auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
-        const Motion<Scalar> solved = grasp_gram_.solve(Force<Scalar>::from(wrench));
-        for (Index i = 0; i < arms(); ++i) {
-            out.template segment<6>(6 * i) -= solved.at_point(contact_offsets.col(i)).vector();  // G_i^T
-        }
+        // The unit-weight inverse of (25) (model/grasp_inverse.hpp), factored in this tick's evaluate.
+        grasp_inverse_.subtract_inverse_times(detail::UnitGraspWeights<Scalar>{arms()}, contact_offsets,
+                                              Force<Scalar>::from(wrench), out_);
     }
     /// tau -> N^T tau = tau - J^T (J M^-1 J^T)^-1 J M^-1 tau (Q, into out; out must not be tau): the
     /// dynamically consistent projection onto the torques that move only the arms' self-motion
@@ -420,15 +225,151 @@ private:
     using FreeMatrix = Eigen::Matrix<Scalar, Free, Free>;
 
     Index free_joints() const noexcept { return reduced_q_.cols() - 6 * (arms() - 1); }
-    template <typename DerivedR> void compute_basis(const Eigen::MatrixBase<DerivedR>& r) noexcept;
+    /// compute() and compute_with_basis() after B is set: the stages below, in order.
     template <typename DerivedM, typename DerivedH, typename DerivedJ, typename DerivedJdotQdot, typename DerivedQdot,
               typename DerivedR>
     ProjectionStatus evaluate(const Eigen::MatrixBase<DerivedM>& M, const Eigen::MatrixBase<DerivedH>& h,
                               const Eigen::MatrixBase<DerivedJ>& J, const Eigen::MatrixBase<DerivedJdotQdot>& Jdot_qdot,
-                              const Eigen::MatrixBase<DerivedQdot>& qdot, const Eigen::MatrixBase<DerivedR>& r) noexcept;
+                              const Eigen::MatrixBase<DerivedQdot>& qdot, const Eigen::MatrixBase<DerivedR>& r) noexcept
+    {
+        const Index joints = this->joints();
+        COOPDYN_REQUIRE_SHAPE(r.cols() == arms() && J.rows() == 6 * arms() && J.cols() == joints && M.rows() == joints &&
+                                  M.cols() == joints && h.size() == joints && qdot.size() == joints &&
+                                  Jdot_qdot.size() == 6 * arms(),
+                              "projected dynamics: inputs sized for another number of arms or joints");
+        // A stage that meets a singular factor ends the evaluation (its status says which).
+        compute_grasp_jacobians(J, r);
+        status = factor_constraint(J);
+        if (status == ProjectionStatus::ok) status = factor_free_inertia(M);
+        if (status == ProjectionStatus::ok) status = factor_task_inertia();
+        if (status != ProjectionStatus::ok) return status;
+        compute_rates(J, Jdot_qdot, qdot);  // the exact rates, on the constraint manifold
+        compute_task_bias(h);
+        return status;
+    }
+
+    /// B from the closed-form basis by a Householder QR (as internal_wrench_basis; no allocation: the
+    /// reflectors and the workspace were sized at construction).
+    template <typename DerivedR>
+    void compute_basis(const Eigen::MatrixBase<DerivedR>& r) noexcept
+    {
+        COOPDYN_REQUIRE_SHAPE(r.cols() == arms(), "projected dynamics: r sized for another number of arms");
+        detail::write_internal_wrench_basis(r, closed_form_basis_, basis_reflectors_, basis_tau_, basis_workspace_,
+                                            internal_basis);
+    }
+
+    // The stages of evaluate, in order; each needs the ones before it.
+    /// Grasp geometry: G (24), Jx = (G G^T)^-1 G J and Jc = J - G^T Jx (L(13)). G G^T is the composite
+    /// inertia of unit masses with unit rotational inertia at the r_i (G_i diag(I, I) G_i^T), factored
+    /// once about their centroid (the unit-weight inverse of (25), model/grasp_inverse.hpp); G and G^T
+    /// are applied per contact (G_i = [[I, 0], [S(r_i), I]], (24)).
+    template <typename DerivedJ, typename DerivedR>
+    void compute_grasp_jacobians(const Eigen::MatrixBase<DerivedJ>& J, const Eigen::MatrixBase<DerivedR>& r) noexcept
+    {
+        contact_offsets = r;
+        write_grasp_matrix(contact_offsets, grasp);
+        grasp_inverse_.compute(detail::UnitGraspWeights<Scalar>{arms()}, contact_offsets);  // valid: J*_o >= K I3
+        detail::write_object_jacobian(grasp_inverse_, contact_offsets, J, object_jacobian);
+        detail::write_constraint_jacobian(contact_offsets, J, object_jacobian, constraint_jacobian);
+    }
+
+    /// Jc^+ through Jr = B^T J (errata E10), by a Householder QR Jr^T = Q1 R: Jr Jr^T = R^T R, and
+    /// R's diagonal is its Cholesky factor's up to signs, so the pivot policy of a Cholesky
+    /// factorisation of Jr Jr^T applies unchanged (numerics/pivot_policy.hpp). Jc^+ Jc =
+    /// Jr^T (Jr Jr^T)^-1 Jr = Q1 Q1^T, so P = I - Q1 Q1^T (L(4)) without squaring Jr's condition
+    /// number.
+    template <typename DerivedJ>
+    ProjectionStatus factor_constraint(const Eigen::MatrixBase<DerivedJ>& J) noexcept
+    {
+        const Index internal = 6 * (arms() - 1);
+        if (joints() < internal) {
+            return ProjectionStatus::singular_constraint;  // Jr has more rows than columns
+        }
+        const Index free = joints() - internal;
+        reduced_jacobian_transpose.noalias() = J.transpose().lazyProduct(internal_basis);
+        reduced_factor_ = reduced_jacobian_transpose;
+        householder_qr_in_place(reduced_factor_, reduced_reflectors_, reduced_tau_);
+        if (!regular_triangular_factor(reduced_r())) {
+            return ProjectionStatus::singular_constraint;
+        }
+        householder_q(reduced_reflectors_, reduced_tau_, reduced_q_, reduced_workspace_);
+        // P = I - Q1 Q1^T = Q2 Q2^T, from the thinner of the two (an output only). Coefficient-based
+        // products throughout: at these sizes Eigen's GEMM path costs more in packing than in
+        // arithmetic.
+        if (form_projection_matrices) {
+            if (free < internal) {
+                const auto q2 = reduced_q_.template rightCols<Free>(free);
+                projector.noalias() = q2.lazyProduct(q2.transpose());
+            } else {
+                const auto q1 = reduced_q_.template leftCols<Internal>(internal);
+                projector.setIdentity();
+                projector.noalias() -= q1.lazyProduct(q1.transpose());
+            }
+        }
+        return ProjectionStatus::ok;
+    }
+
+    /// Mc = P M + I - P = Q2 (Q2^T M) + I - P (L(26)); M22 = (Q2^T M) Q2 and its Cholesky factor (the
+    /// class comment): Mc^-1 needs only that.
+    template <typename DerivedM>
+    ProjectionStatus factor_free_inertia(const Eigen::MatrixBase<DerivedM>& M) noexcept
+    {
+        const auto q2 = reduced_q_.template rightCols<Free>(free_joints());
+        free_rows_inertia_.noalias() = q2.transpose().lazyProduct(M);
+        if (form_projection_matrices) {
+            constrained_inertia = -projector;
+            constrained_inertia.diagonal().array() += Scalar(1);
+            constrained_inertia.noalias() += q2.lazyProduct(free_rows_inertia_);
+        }
+        free_inertia_.noalias() = free_rows_inertia_.lazyProduct(q2);
+        free_inertia_factor_.compute(free_inertia_);
+        if (free_inertia_factor_.info() != Eigen::Success) {
+            return ProjectionStatus::singular_task;  // M not positive definite on the grasp's motions
+        }
+        return ProjectionStatus::ok;
+    }
+
+    /// Lambda_c^-1 = Jx Mc^-1 P Jx^T = E^T E, E = L22^-1 Q2^T Jx^T (L(15)), and Lambda_c = L^-T L^-1
+    /// (task_factor_ = L L^T), symmetric by construction.
+    ProjectionStatus factor_task_inertia() noexcept
+    {
+        task_reduced_.noalias() = reduced_q_.template rightCols<Free>(free_joints()).transpose().lazyProduct(
+            object_jacobian.transpose());
+        free_inertia_factor_.solve_lower_in_place(task_reduced_);
+        task_factor_.compute(task_reduced_.transpose().lazyProduct(task_reduced_));
+        if (!regular_llt(task_factor_)) {
+            return ProjectionStatus::singular_task;
+        }
+        Matrix6<Scalar> task_factor_inverse = Matrix6<Scalar>::Identity();
+        task_factor_.solve_lower_in_place(task_factor_inverse);
+        task_inertia.noalias() = task_factor_inverse.transpose().lazyProduct(task_factor_inverse);
+        return ProjectionStatus::ok;
+    }
+
+    /// Jxdot qdot, Jcdot qdot (model/grasp_jacobians.hpp) and Pdot qdot in closed form:
+    ///   P = I - Jc^+ Jc  =>  Pdot qdot = -Jc^+ Jcdot qdot   (the other term carries Jc qdot = 0)
     template <typename DerivedJ, typename DerivedJdotQdot, typename DerivedQdot>
     void compute_rates(const Eigen::MatrixBase<DerivedJ>& J, const Eigen::MatrixBase<DerivedJdotQdot>& Jdot_qdot,
-                       const Eigen::MatrixBase<DerivedQdot>& qdot) noexcept;
+                       const Eigen::MatrixBase<DerivedQdot>& qdot) noexcept
+    {
+        detail::write_grasp_jacobian_rates(grasp_inverse_, contact_offsets, J, Jdot_qdot, qdot, object_jacobian,
+                                           object_twist, object_jacobian_rate_qdot, constraint_jacobian_rate_qdot,
+                                           stack_scratch_);
+        constraint_pseudo_inverse_times(constraint_jacobian_rate_qdot, projector_rate_qdot);
+        projector_rate_qdot = -projector_rate_qdot;
+    }
+
+    /// hc = Lambda_c (Jx Mc^-1 (P h - Pdot qdot) - Jxdot qdot) (L(15)), after compute_rates.
+    template <typename DerivedH>
+    void compute_task_bias(const Eigen::MatrixBase<DerivedH>& h) noexcept
+    {
+        project(h, joint_scratch_);
+        joint_scratch_ -= projector_rate_qdot;
+        constrained_inertia_solve(joint_scratch_, joint_scratch_);
+        object_twist_rate_ = object_jacobian.lazyProduct(joint_scratch_) - object_jacobian_rate_qdot;
+        task_bias.noalias() = task_inertia.lazyProduct(object_twist_rate_);
+    }
+
     /// R of Jr^T = Q1 R (Jr Jr^T = R^T R) in its upper triangle.
     auto reduced_r() const noexcept
     {
@@ -436,7 +377,7 @@ private:
         return reduced_factor_.template topLeftCorner<Internal, Internal>(internal, internal);
     }
 
-    SpatialInertia<Scalar> grasp_gram_;  // G G^T
+    detail::WeightedGrasp<Scalar> grasp_inverse_;  // G G^T about the contacts' centroid, factored (unit weights)
     Basis closed_form_basis_;  // then its R
     Basis basis_reflectors_;
     Eigen::Matrix<Scalar, Internal, 1> basis_tau_;
@@ -463,8 +404,6 @@ private:
     Eigen::Matrix<Scalar, Free, 1> free_scratch_;
     Vector6<Scalar> task_scratch_;
 };
-
-// ---------------------------------------------------------------------------------------------
 
 template <typename Scalar, int Arms, int Joints>
 ProjectedDynamics<Scalar, Arms, Joints>::ProjectedDynamics(Index arms, Index joints)
@@ -509,151 +448,6 @@ ProjectedDynamics<Scalar, Arms, Joints>::ProjectedDynamics(Index arms, Index joi
     COOPDYN_ASSERT(arms >= 2, "projected dynamics need at least two arms");
     COOPDYN_ASSERT(Arms == Eigen::Dynamic || arms == Arms, "arms must equal the fixed K");
     COOPDYN_ASSERT(Joints == Eigen::Dynamic || joints == Joints, "joints must equal the fixed Q");
-}
-
-/// B from the closed-form basis by a Householder QR (as internal_wrench_basis; no allocation: the
-/// reflectors and the workspace were sized at construction).
-template <typename Scalar, int Arms, int Joints>
-template <typename DerivedR>
-void ProjectedDynamics<Scalar, Arms, Joints>::compute_basis(const Eigen::MatrixBase<DerivedR>& r) noexcept
-{
-    COOPDYN_REQUIRE_SHAPE(r.cols() == arms(), "projected dynamics: r sized for another number of arms");
-    detail::closed_form_internal_basis(r, closed_form_basis_);
-    householder_qr_in_place(closed_form_basis_, basis_reflectors_, basis_tau_);
-    householder_q(basis_reflectors_, basis_tau_, internal_basis, basis_workspace_);
-}
-
-template <typename Scalar, int Arms, int Joints>
-template <typename DerivedM, typename DerivedH, typename DerivedJ, typename DerivedJdotQdot, typename DerivedQdot,
-          typename DerivedR>
-ProjectionStatus ProjectedDynamics<Scalar, Arms, Joints>::evaluate(
-    const Eigen::MatrixBase<DerivedM>& M, const Eigen::MatrixBase<DerivedH>& h, const Eigen::MatrixBase<DerivedJ>& J,
-    const Eigen::MatrixBase<DerivedJdotQdot>& Jdot_qdot, const Eigen::MatrixBase<DerivedQdot>& qdot,
-    const Eigen::MatrixBase<DerivedR>& r) noexcept
-{
-    const Index joints = this->joints();
-    const Index internal = 6 * (arms() - 1);
-    COOPDYN_REQUIRE_SHAPE(r.cols() == arms() && J.rows() == 6 * arms() && J.cols() == joints && M.rows() == joints &&
-                              M.cols() == joints && h.size() == joints && qdot.size() == joints &&
-                              Jdot_qdot.size() == 6 * arms(),
-                          "projected dynamics: inputs sized for another number of arms or joints");
-    // Grasp geometry (B is already set): G, Jx = (G G^T)^-1 G J, Jc = J - G^T Jx. G G^T is the composite inertia
-    // of unit masses with unit rotational inertia at the r_i (G_i diag(I, I) G_i^T), solved in
-    // closed form; G and G^T are applied per contact (G_i = [[I, 0], [S(r_i), I]], (24)).
-    contact_offsets = r;
-    write_grasp_matrix(contact_offsets, grasp);
-    grasp_gram_ = detail::grasp_gram_inertia(contact_offsets);
-    for (Index j = 0; j < joints; ++j) {
-        const Motion<Scalar> column = grasp_gram_.solve(detail::grasp_times(contact_offsets, J.col(j)));
-        column.write_to(object_jacobian.col(j));
-        for (Index i = 0; i < arms(); ++i) {
-            constraint_jacobian.template block<6, 1>(6 * i, j) =
-                J.template block<6, 1>(6 * i, j) - column.at_point(contact_offsets.col(i)).vector();
-        }
-    }
-
-    // Jc^+ through Jr = B^T J (errata E10), by a Householder QR Jr^T = Q1 R: Jr Jr^T = R^T R, and
-    // R's diagonal is its Cholesky factor's up to signs, so the pivot policy of a Cholesky
-    // factorisation of Jr Jr^T applies unchanged (numerics/pivot_policy.hpp). Jc^+ Jc =
-    // Jr^T (Jr Jr^T)^-1 Jr = Q1 Q1^T, so P = I - Q1 Q1^T (L(4)) without squaring Jr's condition
-    // number.
-    if (joints < internal) {
-        status = ProjectionStatus::singular_constraint;  // Jr has more rows than columns
-        return status;
-    }
-    const Index free = joints - internal;
-    reduced_jacobian_transpose.noalias() = J.transpose().lazyProduct(internal_basis);
-    reduced_factor_ = reduced_jacobian_transpose;
-    householder_qr_in_place(reduced_factor_, reduced_reflectors_, reduced_tau_);
-    if (!regular_triangular_factor(reduced_r())) {
-        status = ProjectionStatus::singular_constraint;
-        return status;
-    }
-    householder_q(reduced_reflectors_, reduced_tau_, reduced_q_, reduced_workspace_);
-    const auto q1 = reduced_q_.template leftCols<Internal>(internal);
-    const auto q2 = reduced_q_.template rightCols<Free>(free);
-    // P = I - Q1 Q1^T = Q2 Q2^T, from the thinner of the two (an output only). Coefficient-based
-    // products throughout: at these sizes Eigen's GEMM path costs more in packing than in
-    // arithmetic.
-    if (form_projection_matrices) {
-        if (free < internal) {
-            projector.noalias() = q2.lazyProduct(q2.transpose());
-        } else {
-            projector.setIdentity();
-            projector.noalias() -= q1.lazyProduct(q1.transpose());
-        }
-    }
-
-    // Mc = P M + I - P = Q2 (Q2^T M) + I - P (L(26)); M22 = (Q2^T M) Q2 (the class comment).
-    free_rows_inertia_.noalias() = q2.transpose().lazyProduct(M);
-    if (form_projection_matrices) {
-        constrained_inertia = -projector;
-        constrained_inertia.diagonal().array() += Scalar(1);
-        constrained_inertia.noalias() += q2.lazyProduct(free_rows_inertia_);
-    }
-    free_inertia_.noalias() = free_rows_inertia_.lazyProduct(q2);
-    free_inertia_factor_.compute(free_inertia_);
-    if (free_inertia_factor_.info() != Eigen::Success) {
-        status = ProjectionStatus::singular_task;  // M not positive definite on the grasp's motions
-        return status;
-    }
-
-    // Lambda_c^-1 = Jx Mc^-1 P Jx^T = E^T E, E = L22^-1 Q2^T Jx^T (L(15)).
-    task_reduced_.noalias() = q2.transpose().lazyProduct(object_jacobian.transpose());
-    free_inertia_factor_.solve_lower_in_place(task_reduced_);
-    task_factor_.compute(task_reduced_.transpose().lazyProduct(task_reduced_));
-    if (!regular_llt(task_factor_)) {
-        status = ProjectionStatus::singular_task;
-        return status;
-    }
-    // Lambda_c = L^-T L^-1 (task_factor_ = L L^T), symmetric by construction.
-    Matrix6<Scalar> task_factor_inverse = Matrix6<Scalar>::Identity();
-    task_factor_.solve_lower_in_place(task_factor_inverse);
-    task_inertia.noalias() = task_factor_inverse.transpose().lazyProduct(task_factor_inverse);
-
-    // The exact rates, on the constraint manifold.
-    compute_rates(J, Jdot_qdot, qdot);
-
-    // hc = Lambda_c (Jx Mc^-1 (P h - Pdot qdot) - Jxdot qdot) (L(15)).
-    project(h, joint_scratch_);
-    joint_scratch_ -= projector_rate_qdot;
-    constrained_inertia_solve(joint_scratch_, joint_scratch_);
-    object_twist_rate_ = object_jacobian.lazyProduct(joint_scratch_) - object_jacobian_rate_qdot;
-    task_bias.noalias() = task_inertia.lazyProduct(object_twist_rate_);
-    status = ProjectionStatus::ok;
-    return status;
-}
-
-/// Jxdot qdot, Jcdot qdot and Pdot qdot in closed form. With v = J qdot, y = Jx qdot (the object's
-/// twist), omega = y's angular part and rdot_i = omega x r_i (the contacts turn with the object):
-///   A Jx = G J, A = G G^T  =>  Jxdot qdot = A^-1 (G Jdot qdot + Gdot v - Adot y),  Adot = Gdot G^T + G Gdot^T
-///   Jc = J - G^T Jx        =>  Jcdot qdot = Jdot qdot - Gdot^T y - G^T Jxdot qdot
-///   P = I - Jc^+ Jc        =>  Pdot qdot = -Jc^+ Jcdot qdot   (the other term carries Jc qdot = 0)
-template <typename Scalar, int Arms, int Joints>
-template <typename DerivedJ, typename DerivedJdotQdot, typename DerivedQdot>
-void ProjectedDynamics<Scalar, Arms, Joints>::compute_rates(const Eigen::MatrixBase<DerivedJ>& J,
-                                                             const Eigen::MatrixBase<DerivedJdotQdot>& Jdot_qdot,
-                                                             const Eigen::MatrixBase<DerivedQdot>& qdot) noexcept
-{
-    object_twist.noalias() = object_jacobian.lazyProduct(qdot);
-    const Vector3<Scalar> omega = object_twist.template tail<3>();
-    stack_scratch_.noalias() = J.lazyProduct(qdot);  // v
-    Vector6<Scalar> rate = detail::grasp_times(contact_offsets, Jdot_qdot).vector() +
-                           detail::grasp_rate_times(contact_offsets, omega, stack_scratch_);
-    // Adot y = Gdot (G^T y) + G (Gdot^T y)
-    detail::write_grasp_transpose_times(contact_offsets, Motion<Scalar>::from(object_twist), stack_scratch_);
-    rate -= detail::grasp_rate_times(contact_offsets, omega, stack_scratch_);
-    detail::grasp_rate_transpose_times(contact_offsets, omega, object_twist, stack_scratch_);  // Gdot^T y
-    rate -= detail::grasp_times(contact_offsets, stack_scratch_).vector();
-    object_jacobian_rate_qdot = grasp_gram_.solve(Force<Scalar>::from(rate)).vector();
-
-    constraint_jacobian_rate_qdot = Jdot_qdot - stack_scratch_;
-    const Motion<Scalar> object_rate = Motion<Scalar>::from(object_jacobian_rate_qdot);
-    for (Index i = 0; i < arms(); ++i) {
-        constraint_jacobian_rate_qdot.template segment<6>(6 * i) -= object_rate.at_point(contact_offsets.col(i)).vector();
-    }
-    constraint_pseudo_inverse_times(constraint_jacobian_rate_qdot, projector_rate_qdot);
-    projector_rate_qdot = -projector_rate_qdot;
 }
 
 /// Jc^+ x = Jr^T (Jr Jr^T)^-1 B^T x = Q1 R^-T B^T x (Jc = B Jr, B orthonormal, Jr^T = Q1 R of

@@ -47,11 +47,7 @@ bool try_squeeze(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r,
     if (!grasp.valid) {
         return false;
     }
-    Force<Scalar> net = Force<Scalar>::Zero();
-    for (Index i = 0; i < r.cols(); ++i) {
-        net += Force<Scalar>::from(wrenches_on_object.template segment<6>(6 * i)).shifted(r.col(i).template head<3>());
-    }
-    const Motion<Scalar> motion = grasp.composite_motion(net);
+    const Motion<Scalar> motion = grasp.composite_motion(grasp_times(r, wrenches_on_object));  // G hbar (24)
     for (Index i = 0; i < r.cols(); ++i) {
         const Force<Scalar> applied = Force<Scalar>::from(wrenches_on_object.template segment<6>(6 * i));
         (applied - grasp.share(weights, r, i, motion)).write_to(squeeze.template segment<6>(6 * i));

@@ -1,6 +1,8 @@
 /// \file
 /// \brief Non-squeezing load distribution: the weighted generalized inverse of the grasp matrix
-/// (paper (25), errata E2) and the desired end-effector wrenches (26); docs/coordination.md.
+/// (paper (25), errata E2) and the desired end-effector wrenches (26); docs/coordination.md. The
+/// inverse itself (detail::WeightedGrasp, shared with the unweighted G^+ of the projected
+/// dynamics) is in model/grasp_inverse.hpp; this header validates the weights and distributes.
 ///
 /// Weights: positive m*_i (scalar, "mass-like") and symmetric positive semi-definite J*_i (3x3,
 /// "rotational inertia-like", in {w}). With the weighted centroid c = sum m*_i r_i / m*_o and
@@ -30,7 +32,7 @@
 #include "coopdyn/dynamics/input_check.hpp"
 #include "coopdyn/detail/validation.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
-#include "coopdyn/numerics/fixed_ldlt.hpp"
+#include "coopdyn/model/grasp_inverse.hpp"
 #include "coopdyn/numerics/pivot_policy.hpp"
 #include "coopdyn/spatial/inertia.hpp"
 #include "coopdyn/spatial/skew.hpp"
@@ -50,47 +52,6 @@ namespace detail {
 template <typename Scalar> double load_distribution_singularity_tolerance()
 {
     return static_cast<double>(pivot_tolerance_ulps) * epsilon_of<Scalar>();
-}
-
-/// Smallest over largest pivot of the diagonally pivoted L D L^T factorisation of a symmetric 3x3
-/// matrix; not positive when the matrix is not positive definite (or holds NaN). The largest pivot
-/// is the largest diagonal entry (it is chosen first), so the ratio is the pivot policy's
-/// d_min / max_i A_ii (numerics/pivot_policy.hpp).
-///
-/// Why pivoted: for a symmetric positive semi-definite matrix every pivot lies between the
-/// extreme eigenvalues, and with the largest remaining diagonal entry chosen first the last pivot
-/// is within a small factor of the smallest eigenvalue (rank revealing: over random 3x3 matrices
-/// the ratio returned here was between 1 and 16 times lambda_min / lambda_max, never below
-/// it). The unpivoted factor is not: for a matrix that is
-/// singular up to rounding (two grasp points with zero rotational weights) its smallest pivot can
-/// stay far above the rounding level, or come out positive by chance, and the singular J*_o was
-/// then inverted (it happened for about half of random degenerate two-arm grasps).
-template <typename Scalar> Scalar pivot_ratio(const Matrix3<Scalar>& matrix) noexcept
-{
-    int first = 0;
-    if (matrix(1, 1) > matrix(first, first)) {
-        first = 1;
-    }
-    if (matrix(2, 2) > matrix(first, first)) {
-        first = 2;
-    }
-    const int second = (first + 1) % 3;
-    const int third = (first + 2) % 3;
-    const Scalar largest = matrix(first, first);
-    if (!(largest > Scalar(0))) {
-        return Scalar(0);
-    }
-    // Schur complement of the first pivot on the remaining two indices.
-    const Scalar s22 = matrix(second, second) - matrix(second, first) * matrix(second, first) / largest;
-    const Scalar s33 = matrix(third, third) - matrix(third, first) * matrix(third, first) / largest;
-    const Scalar s23 = matrix(second, third) - matrix(second, first) * matrix(third, first) / largest;
-    const bool second_first = s22 >= s33;
-    const Scalar middle = second_first ? s22 : s33;
-    const Scalar other = second_first ? s33 : s22;
-    if (!(middle > Scalar(0))) {
-        return Scalar(0);
-    }
-    return (other - s23 * s23 / middle) / largest;
 }
 
 /// The weights of (25) in the stacked form: m*_i (N) and J*_i side by side (3 x 3N), read arm by
@@ -122,72 +83,6 @@ struct is_load_weight_list<Container, std::void_t<decltype(std::declval<const Co
     : std::is_same<std::decay_t<decltype(std::declval<const Container&>()[std::size_t(0)])>,
                    CentralInertia<typename std::decay_t<decltype(std::declval<const Container&>()[std::size_t(0)])>::Scalar>> {};
 template <typename Container> inline constexpr bool is_load_weight_list_v = is_load_weight_list<Container>::value;
-
-/// The weights M*_i = diag(m*_i I3, J*_i) placed at the grasp points r_i, seen from the point
-/// `about`: the composite sum_i G(r_i - about) M*_i G(r_i - about)^T (SpatialInertia::add_shifted).
-/// Its mass is m*_o and, about the weighted centroid, its rotational inertia is J*_o of (25).
-template <typename Weights, typename DerivedR>
-SpatialInertia<typename DerivedR::Scalar> composite_of_weights(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r,
-                                                               const Vector3<typename DerivedR::Scalar>& about) noexcept
-{
-    SpatialInertia<typename DerivedR::Scalar> composite;
-    for (Index i = 0; i < r.cols(); ++i) {
-        composite.add_shifted(weights[static_cast<std::size_t>(i)], r.col(i).template head<3>() - about);
-    }
-    return composite;
-}
-
-/// The weighted grasp of (25): the composite of the weights about their centroid c (mass m*_o,
-/// rotational inertia J*_o) and the factor of J*_o. `valid` is false when a mass weight is not
-/// positive or J*_o is singular by the pivot policy (numerics/pivot_policy.hpp; checked on
-/// pivot_ratio).
-///
-/// The distribution is the rigid motion of that composite body: the object wrench shifted to c
-/// gives it the motion z = (M*_o)^-1 h_c = [f / m*_o; (J*_o)^-1 t_c], and arm i takes
-/// hbar_i = M*_i G(r'_i)^T z, r'_i = r_i - c (the least-norm W G^T (G W G^T)^-1 h_o, block row i
-/// of (25) with E2). J*_o is accumulated about c itself rather than taken from the composite
-/// about the centre of mass (rotational_about_centre), which would subtract m*_o S(c) S(c)^T from
-/// a sum that contains it and lose the digits of a nearly singular J*_o.
-template <typename Scalar> struct WeightedGrasp {
-    Vector3<Scalar> centroid;                    // c, relative to the object's centre of mass
-    CentralInertia<Scalar> composite;            // diag(m*_o I3, J*_o) about c
-    FixedLdlt<Scalar, 3> rotational_factor;      // of J*_o
-    bool valid;
-
-    template <typename Weights, typename DerivedR>
-    WeightedGrasp(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r) noexcept
-    {
-        bool positive_masses = true;
-        for (Index i = 0; i < r.cols(); ++i) {
-            positive_masses = positive_masses && weights[static_cast<std::size_t>(i)].mass() > Scalar(0);
-        }
-        const SpatialInertia<Scalar> about_centre_of_mass = composite_of_weights(weights, r, Vector3<Scalar>::Zero());
-        centroid = about_centre_of_mass.centre();
-        composite = CentralInertia<Scalar>(about_centre_of_mass.mass(),
-                                           composite_of_weights(weights, r, centroid).rotational());
-        const Matrix3<Scalar> rotational = composite.rotational().matrix();
-        const bool factored = rotational_factor.compute(rotational);
-        // The pivot policy on the pivoted factorisation (the ratio is already relative: scale 1).
-        valid = positive_masses && factored && regular_pivot(pivot_ratio(rotational), Scalar(1));
-    }
-
-    /// z = [f / m*_o; (J*_o)^-1 t_c] with t_c = t_o - c x f, for the object wrench h_o at the
-    /// object's centre of mass.
-    Motion<Scalar> composite_motion(const Force<Scalar>& object_wrench) const noexcept
-    {
-        const Force<Scalar> at_centroid = object_wrench.shifted(Vector3<Scalar>(-centroid));
-        return Motion<Scalar>::make(at_centroid.linear / composite.mass(),
-                                    rotational_factor.solve(at_centroid.angular));
-    }
-
-    /// hbar_i = M*_i G(r_i - c)^T z: arm i's share of the object wrench whose composite motion is z.
-    template <typename Weights, typename DerivedR>
-    Force<Scalar> share(const Weights& weights, const Eigen::MatrixBase<DerivedR>& r, Index arm,
-                        const Motion<Scalar>& motion) const noexcept
-    {
-        return weights[static_cast<std::size_t>(arm)] * motion.at_point(Vector3<Scalar>(r.col(arm).template head<3>() - centroid));
-    }
-};
 
 /// Run-time checks of one weight, naming the parameter and the arm: m*_i > 0 and J*_i symmetric
 /// positive semi-definite.
@@ -254,12 +149,7 @@ weighted_grasp_inverse_of(const Weights& weights, const Eigen::MatrixBase<Derive
         fail_degenerate_grasp();
     }
     Eigen::Matrix<Scalar, times_six(DerivedR::ColsAtCompileTime), 6> result(6 * r.cols(), 6);
-    for (int column = 0; column < 6; ++column) {
-        const Motion<Scalar> motion = grasp.composite_motion(Force<Scalar>::from(Vector6<Scalar>::Unit(column)));
-        for (Index i = 0; i < r.cols(); ++i) {
-            grasp.share(weights, r, i, motion).write_to(result.col(column).template segment<6>(6 * i));
-        }
-    }
+    grasp.write_inverse(weights, r, result);
     return result;
 }
 

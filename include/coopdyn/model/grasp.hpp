@@ -1,6 +1,9 @@
 /// \file
 /// \brief Rigid-grasp kinematics: grasp matrix (24), constraint matrix (14) and constraint bias
-/// (13), and the per-arm maps G_i and G_i^T they are built from (docs/model.md).
+/// (13), the per-arm maps G_i and G_i^T they are built from, and the grasp operators applied per
+/// contact without forming G (G w, G^T y, Gdot v, Gdot^T y, G G^T; docs/model.md, "Rigid grasp
+/// kinematics"). The grasp's pseudo-inverses are in grasp_inverse.hpp, the internal-wrench basis
+/// (null(G)) in internal_wrench_basis.hpp.
 ///
 /// `r` is 3 x N: column i is r_i, from the object's centre of mass to grasp point i, in {w}.
 #pragma once
@@ -104,5 +107,74 @@ constraint_bias(const Eigen::MatrixBase<DerivedR>& r, const Eigen::MatrixBase<De
     }
     return result;
 }
+
+namespace detail {
+
+// The grasp operators of the per-tick path (ProjectedDynamics, the squeeze): G and its rate applied
+// per contact, G_i = [[I, 0], [S(r_i), I]] (24), 18 nonzeros of 36 per block, never formed.
+
+/// G G^T (6 x 6, symmetric positive definite for any grasp: its lower-right block contains K I3).
+template <typename DerivedG> Matrix6<typename DerivedG::Scalar> grasp_gram(const Eigen::MatrixBase<DerivedG>& grasp)
+{
+    return grasp * grasp.transpose();
+}
+
+/// G w = sum_i G_i w_i = sum_i [f_i; t_i + r_i x f_i] (24), per contact: G has 18 nonzeros of 36
+/// per block. The net wrench at the object's centre of the contact wrenches w (any r, 3 x K).
+template <typename DerivedR, typename DerivedW>
+Force<typename DerivedW::Scalar> grasp_times(const Eigen::MatrixBase<DerivedR>& r,
+                                             const Eigen::MatrixBase<DerivedW>& stacked) noexcept
+{
+    using Scalar = typename DerivedW::Scalar;
+    Force<Scalar> result;
+    for (Index i = 0; i < r.cols(); ++i) {
+        result += Force<Scalar>::from(stacked.template segment<6>(6 * i)).shifted(r.col(i).template head<3>());
+    }
+    return result;
+}
+
+/// G^T y: block i is G_i^T y = [v + w x r_i; w], the twist of contact i (10).
+template <typename DerivedR, typename DerivedOut>
+void write_grasp_transpose_times(const Eigen::MatrixBase<DerivedR>& r, const Motion<typename DerivedR::Scalar>& twist,
+                                 const Eigen::MatrixBase<DerivedOut>& result_out) noexcept
+{
+    auto& result = const_cast<Eigen::MatrixBase<DerivedOut>&>(result_out);
+    for (Index i = 0; i < r.cols(); ++i) {
+        twist.at_point(r.col(i)).write_to(result.template segment<6>(6 * i));
+    }
+}
+
+/// Gdot v = sum_i [0; rdot_i x v_i,linear] with rdot_i = omega x r_i (the contacts turn with the
+/// object; G_i = [[I, 0], [S(r_i), I]] so Gdot_i = [[0, 0], [S(rdot_i), 0]]).
+template <typename DerivedR, typename DerivedV>
+Vector6<typename DerivedV::Scalar> grasp_rate_times(const Eigen::MatrixBase<DerivedR>& r,
+                                                    const Vector3<typename DerivedV::Scalar>& omega,
+                                                    const Eigen::MatrixBase<DerivedV>& stacked) noexcept
+{
+    using Scalar = typename DerivedV::Scalar;
+    Vector6<Scalar> result = Vector6<Scalar>::Zero();
+    for (Index i = 0; i < r.cols(); ++i) {
+        const Vector3<Scalar> rate = omega.cross(Vector3<Scalar>(r.col(i)));
+        result.template tail<3>() += rate.cross(Vector3<Scalar>(stacked.template segment<3>(6 * i)));
+    }
+    return result;
+}
+
+/// Gdot^T y: block i = [S(rdot_i)^T y_angular; 0] = [y_angular x rdot_i; 0].
+template <typename DerivedR, typename DerivedOut>
+void grasp_rate_transpose_times(const Eigen::MatrixBase<DerivedR>& r, const Vector3<typename DerivedR::Scalar>& omega,
+                                const Vector6<typename DerivedR::Scalar>& y,
+                                const Eigen::MatrixBase<DerivedOut>& result_out) noexcept
+{
+    using Scalar = typename DerivedR::Scalar;
+    auto& result = const_cast<Eigen::MatrixBase<DerivedOut>&>(result_out);
+    for (Index i = 0; i < r.cols(); ++i) {
+        const Vector3<Scalar> rate = omega.cross(Vector3<Scalar>(r.col(i)));
+        result.template segment<3>(6 * i) = Vector3<Scalar>(y.template tail<3>()).cross(rate);
+        result.template segment<3>(6 * i + 3).setZero();
+    }
+}
+
+}  // namespace detail
 
 }  // namespace coopdyn
