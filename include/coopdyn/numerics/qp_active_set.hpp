@@ -70,6 +70,7 @@ public:
           step_(Vector::Zero(variables)),
           direction_(Vector::Zero(variables)),
           dual_direction_(Vector::Zero(variables)),
+          dual_scale_(Vector::Zero(variables)),
           multipliers_(Vector::Zero(variables)),
           rows_(ActiveList::Constant(variables, -1))
     {
@@ -228,21 +229,32 @@ public:
 private:
     using Givens = QpGivens<Scalar>;
 
-    /// r = R^-1 step_.head(q) by back substitution. An entry within the rounding of its own
-    /// computation is set to zero: its sign is noise, and a noise-positive r_j would drop a row
+    /// r = R^-1 step_.head(q) by back substitution, column by column: once r_k is known, its
+    /// column of R times r_k is subtracted from the entries above it at once (a contiguous column
+    /// of the column-major R, so the loop vectorises; a row-by-row sum would walk R across its
+    /// storage in one dependent chain). Each entry's rounding scale, |w_i| + sum_k |R_ik r_k|, is
+    /// accumulated alongside: an entry within the rounding of its own computation (8 n eps of that
+    /// scale) is set to zero, because its sign is noise, and a noise-positive r_j would drop a row
     /// (or hide an infeasibility) for no reason.
     void solve_triangle(Index q) noexcept
     {
         using std::abs;
         const Scalar noise = Scalar(8) * static_cast<Scalar>(variables_) * std::numeric_limits<Scalar>::epsilon();
-        for (Index i = q - 1; i >= 0; --i) {
-            Scalar sum = step_(i);
-            Scalar magnitude = abs(step_(i));
-            for (Index k = i + 1; k < q; ++k) {
-                sum -= triangle_(i, k) * dual_direction_(k);
-                magnitude += abs(triangle_(i, k) * dual_direction_(k));
+        Scalar* w = dual_direction_.data();  // J1^T n_p, becoming r from the bottom up
+        Scalar* scale = dual_scale_.data();
+        for (Index i = 0; i < q; ++i) {
+            w[i] = step_(i);
+            scale[i] = abs(step_(i));
+        }
+        for (Index k = q - 1; k >= 0; --k) {
+            const Scalar r = abs(w[k]) > noise * scale[k] ? w[k] / triangle_(k, k) : Scalar(0);
+            w[k] = r;
+            const Scalar* column = triangle_.col(k).data();
+            for (Index i = 0; i < k; ++i) {
+                const Scalar term = column[i] * r;
+                w[i] -= term;
+                scale[i] += abs(term);
             }
-            dual_direction_(i) = abs(sum) > noise * magnitude ? sum / triangle_(i, i) : Scalar(0);
         }
     }
 
@@ -265,6 +277,7 @@ private:
     Vector step_;            ///< J^T n_p
     Vector direction_;       ///< z
     Vector dual_direction_;  ///< r (first q entries)
+    Vector dual_scale_;      ///< the rounding scale of each entry of r (scratch)
     Vector multipliers_;     ///< u (first q entries)
     ActiveList rows_;        ///< active rows in order of entry (first q entries)
     Index count_ = 0;        ///< q
