@@ -143,6 +143,7 @@ public:
           normals_(NormalMatrix::Zero(variables, rows)),
           bounds_(rows),
           row_norms_(RowVector::Zero(rows)),
+          inverse_row_norms_(RowVector::Zero(rows)),
           violations_(rows),
           is_active_(rows),
           warm_rows_(variables),
@@ -193,7 +194,7 @@ public:
     const Result& result() const noexcept { return result_; }
 
     /// \brief Sets C (m x n) for the solves that follow: kept as C (for C x, all rows at once) and
-    /// as C^T (each row's normal a contiguous column), with the rows' norms.
+    /// as C^T (each row's normal a contiguous column), with the rows' norms and their inverses.
     /// Allocates nothing (the workspace was sized at construction). The previous solve's active
     /// set stays the warm start of the next solve_warm().
     template <typename C> void set_constraints(const Eigen::MatrixBase<C>& constraints) noexcept
@@ -209,6 +210,11 @@ public:
         // Square roots of the whole vector at once (they vectorise; one per row would not).
         row_norms_ = constraints_.rowwise().squaredNorm();
         row_norms_ = row_norms_.cwiseSqrt();
+        // 1 / |c_i| for the most-violated scan (multiplied, not divided, on every scan); a zero
+        // row is handled apart (most_violated_row), its entry unused.
+        for (Index i = 0; i < rows_; ++i) {
+            inverse_row_norms_(i) = row_norms_(i) > 0 ? Scalar(1) / row_norms_(i) : Scalar(0);
+        }
     }
 
     /// The C of the last set_constraints() (zero before it).
@@ -371,7 +377,7 @@ private:
             if (!(row_norms_(i) > 0)) {
                 return i;
             }
-            const Scalar distance = residual / row_norms_(i);
+            const Scalar distance = residual * inverse_row_norms_(i);
             if (distance > worst_distance) {
                 worst_distance = distance;
                 worst = i;
@@ -461,6 +467,7 @@ private:
     NormalMatrix normals_;             ///< C^T: row i's normal c_i is column i
     RowVector bounds_;                 ///< d
     RowVector row_norms_;              ///< |c_i|
+    RowVector inverse_row_norms_;      ///< 1 / |c_i| (0 for a zero row)
     RowVector violations_;             ///< C x (scratch)
     RowFlags is_active_;               ///< 1 for rows in the active set
     ActiveList warm_rows_;             ///< the previous active set, for solve_warm
