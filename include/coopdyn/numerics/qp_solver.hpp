@@ -21,10 +21,11 @@
 ///   satisfies p together with the active rows: the problem is infeasible;
 /// - when no row is violated, x is optimal (all KKT conditions hold).
 ///
-/// Numerics: H is factorised once (L L^T: FixedLlt for fixed sizes, Eigen::LLT
-/// otherwise); the solver keeps J = L^-T Q (Q orthogonal) and the upper-triangular R with
-/// J^T [active rows as columns] = [R; 0], updated by Givens rotations when a row enters or leaves
-/// (never refactorised, never inverted).
+/// Numerics: H is factorised once per solve (L L^T: FixedLlt for fixed sizes, Eigen::LLT
+/// otherwise); J = L^-T Q (Q orthogonal) and the upper-triangular R with J^T [active rows as
+/// columns] = [R; 0] are updated by Givens rotations when a row enters or leaves, never
+/// refactorised, never inverted (numerics/qp_active_set.hpp). C is kept between solves, as C and
+/// C^T with its rows' norms, so a constant C is given once (set_constraints).
 #pragma once
 
 #include "coopdyn/config.hpp"
@@ -108,10 +109,9 @@ template <typename Scalar, int Variables, int Rows> struct QpResult {
 /// debug assertions, except that a problem of another size than the workspace stops the program
 /// in Release too (COOPDYN_REQUIRE_SHAPE), instead of writing past a buffer.
 ///
-/// Constant constraints (a controller's friction rows): give C once, to the constructor or to
-/// set_constraints(), and solve each tick with H, g and d only (solve(H, g, d),
-/// solve_warm(H, g, d)); the solver keeps C in the layouts its loops read and the rows' norms.
-/// solve(H, g, C, d) is set_constraints(C) followed by solve(H, g, d): the same answer.
+/// Constant constraints (a controller's friction rows): give C once (constructor or
+/// set_constraints()) and solve each tick with H, g and d only. solve(H, g, C, d) is
+/// set_constraints(C) followed by solve(H, g, d): the same answer.
 template <typename Scalar, int Variables, int Rows> class QpSolver {
     static_assert(Variables == Eigen::Dynamic || Variables > 0, "QpSolver: at least one variable");
     static_assert(Rows == Eigen::Dynamic || Rows > 0,
