@@ -621,9 +621,18 @@ TEST(QpSolverAllocation, SolvesDoNotAllocate)
     coopdyn::QpSolver<double, 6, 30> fixed;
     DynamicSolver dynamic(12, 60);
     DynamicSolver dynamic_small(6, 30);
+    DynamicSolver dynamic_once(p4.c);
     int active = 0;
     const Allocations counts = count_allocations([&] {
+        coopdyn::QpSolver<double, 6, 30> fixed_once(c);  // fixed sizes: no heap, constructor included
         for (int tick = 0; tick < 10; ++tick) {
+            // C set once: the per-tick path of the controller.
+            active += fixed_once.solve(h, g, d).active_count;
+            active += fixed_once.solve_warm(h, g, d).active_count;
+            fixed_once.set_constraints(c);
+            dynamic_once.set_constraints(p4.c);
+            active += dynamic_once.solve(p4.h, g4, p4.d).active_count;
+            active += dynamic_once.solve_warm(p4.h, g4, p4.d).active_count;
             const auto result = coopdyn::solve_qp(h, g, c, d);
             active += result.active_count;
             active += fixed.solve(h, g, c, d).active_count;
@@ -641,12 +650,18 @@ TEST(QpSolverAllocation, SolvesDoNotAllocate)
         active += dynamic.solve(p4.h, g4, p4.c, p4.d).active_count;
         active += dynamic.solve_warm(p4.h, g4, p4.c, p4.d).active_count;
     });
+    const Allocations set_once_only = count_allocations([&] {
+        dynamic_once.set_constraints(p4.c);
+        active += dynamic_once.solve_warm(p4.h, g4, p4.d).active_count;
+    });
     EXPECT_EQ(one_shot.operator_new + one_shot.eigen, 0);
     EXPECT_EQ(dynamic_only.operator_new + dynamic_only.eigen, 0);
+    EXPECT_EQ(set_once_only.operator_new + set_once_only.eigen, 0);
     EXPECT_GT(active, 0);
     EXPECT_EQ(dynamic.result().status, QpStatus::solved);
-    std::printf("[qp allocation] 60 solves (fixed 6 x 30, dynamic 12 x 60 and 6 x 30, cold and warm): "
-                "operator new %ld, Eigen malloc %ld\n",
+    EXPECT_EQ(dynamic_once.result().status, QpStatus::solved);
+    std::printf("[qp allocation] 100 solves and 20 set_constraints (fixed 6 x 30, dynamic 12 x 60 and 6 x 30, cold "
+                "and warm, C per solve and C set once): operator new %ld, Eigen malloc %ld\n",
                 counts.operator_new, counts.eigen);
 }
 
@@ -767,38 +782,6 @@ TEST(QpSolverSetOnce, NewConstraintsGiveTheNewAnswer)
         }
     }
     EXPECT_GE(changed, 50);  // the new rows move the answer (a check that the test tests)
-}
-
-TEST(QpSolverAllocation, SetOnceSolvesDoNotAllocate)
-{
-    Rng rng(13);
-    const ContactProblem p = contact_problem(2, rng);
-    const ContactProblem p4 = contact_problem(4, rng);
-    const Eigen::Matrix<double, 6, 6> h = p.h;
-    const Eigen::Matrix<double, 6, 1> g = -p.h * p.desired;
-    const Eigen::Matrix<double, 30, 6> c = p.c;
-    const Eigen::Matrix<double, 30, 1> d = p.d;
-    const VectorXd g4 = -p4.h * p4.desired;
-    DynamicSolver dynamic(12, 60);
-    int active = 0;
-    const Allocations counts = count_allocations([&] {
-        coopdyn::QpSolver<double, 6, 30> fixed(c);  // fixed sizes: no heap, constructor included
-        for (int tick = 0; tick < 10; ++tick) {
-            active += fixed.solve(h, g, d).active_count;
-            active += fixed.solve_warm(h, g, d).active_count;
-            fixed.set_constraints(c);
-            dynamic.set_constraints(p4.c);
-            active += dynamic.solve(p4.h, g4, p4.d).active_count;
-            active += dynamic.solve_warm(p4.h, g4, p4.d).active_count;
-        }
-    });
-    EXPECT_EQ(counts.operator_new, 0);
-    EXPECT_EQ(counts.eigen, 0);
-    EXPECT_GT(active, 0);
-    EXPECT_EQ(dynamic.result().status, QpStatus::solved);
-    std::printf("[qp allocation] set once: 40 solves and 20 set_constraints (fixed 6 x 30, dynamic 12 x 60): "
-                "operator new %ld, Eigen malloc %ld\n",
-                counts.operator_new, counts.eigen);
 }
 
 }  // namespace
