@@ -210,11 +210,10 @@ public:
         // Square roots of the whole vector at once (they vectorise; one per row would not).
         row_norms_ = constraints_.rowwise().squaredNorm();
         row_norms_ = row_norms_.cwiseSqrt();
-        // 1 / |c_i| for the most-violated scan (multiplied, not divided, on every scan); a zero
-        // row is handled apart (most_violated_row), its entry unused.
-        for (Index i = 0; i < rows_; ++i) {
-            inverse_row_norms_(i) = row_norms_(i) > 0 ? Scalar(1) / row_norms_(i) : Scalar(0);
-        }
+        // 1 / |c_i| for the most-violated scan (multiplied, not divided, on every scan), all at
+        // once (vectorised divisions); a zero row's +inf is never read (most_violated_row
+        // returns such a row before using its inverse).
+        inverse_row_norms_ = row_norms_.cwiseInverse();
     }
 
     /// The C of the last set_constraints() (zero before it).
@@ -467,7 +466,7 @@ private:
     NormalMatrix normals_;             ///< C^T: row i's normal c_i is column i
     RowVector bounds_;                 ///< d
     RowVector row_norms_;              ///< |c_i|
-    RowVector inverse_row_norms_;      ///< 1 / |c_i| (0 for a zero row)
+    RowVector inverse_row_norms_;      ///< 1 / |c_i| (+inf for a zero row, never read)
     RowVector violations_;             ///< C x (scratch)
     RowFlags is_active_;               ///< 1 for rows in the active set
     ActiveList warm_rows_;             ///< the previous active set, for solve_warm
