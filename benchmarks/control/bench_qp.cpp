@@ -7,129 +7,54 @@
 //   BM_ColdSequence<C>    solve along a slowly changing sequence (1 ms ticks of a 1 Hz motion)
 //   BM_WarmSequence<C>    solve_warm along the same sequence, each tick warm-started from the last
 //   BM_ColdDynamic<C>     QpSolver<double, Dynamic, Dynamic>::solve, the BM_Cold problem
+//   QpShape/<case>/<sizes>/<cold|warm>/<set_once|four_args>
+//                         the controller's two- and three-palm QPs (palms2_6x30, palms3_12x45) and
+//                         a random 20 x 80 (random_20x80), fixed and dynamic sizes; cold = solve,
+//                         warm = solve_warm after solving the same problem; set_once = C given once
+//                         (set_constraints) and solve(H, g, d) per call, four_args = solve(H, g,
+//                         C, d) per call. Define COOPDYN_QP_BASELINE to build the file against a
+//                         coopdyn without set_constraints (the four_args cases only), for
+//                         before/after comparisons.
 //
-// C contacts with 3D forces (n = 3C variables), each limited by a 13-facet friction pyramid and
-// 1 <= f_n <= 50 (15 rows per contact: m = 15C): C = 2 is the 6 x 30 two-arm QP, C = 4 the 12 x 60
-// four-arm one. The objective tracks a desired force, outside the friction cone for some contacts,
-// in the metric of a random SPD H of condition 100, so a few rows are active at the optimum.
+// The QPs are those of qp_cases.hpp. BM_*<C>: C point contacts with 3D forces (n = 3C variables),
+// each limited by a 13-facet friction pyramid and 1 <= f_n <= 50 (15 rows per contact: m = 15C):
+// C = 2 is the 6 x 30 two-contact QP, C = 4 the 12 x 60 four-contact one. The objective tracks a
+// desired force, outside the friction cone for some contacts, in the metric of a random SPD H of
+// condition 100, so a few rows are active at the optimum.
 // Before its timed loop every variant checks the KKT conditions of its first solve (relative
 // residuals <= 1e-9) and skips with an error otherwise. The counters: "steps", the mean number of
 // Goldfarb-Idnani steps per solve, and "active", the mean number of rows active at the optimum.
 
 #include <coopdyn/numerics/qp_solver.hpp>
 
-#include <Eigen/Geometry>
-#include <Eigen/QR>
+#include "qp_cases.hpp"
+
 #include <benchmark/benchmark.h>
 
-#include <cmath>
-#include <random>
 #include <vector>
 
 namespace {
 
 using coopdyn::Dynamic;
+using coopdyn_bench::ContactQp;
 using Eigen::Index;
-using MatrixX = Eigen::MatrixXd;
-using VectorX = Eigen::VectorXd;
-using Rng = std::mt19937;
-
-constexpr double two_pi = 6.283185307179586;
-
-double uniform(Rng& rng, double low, double high) { return std::uniform_real_distribution<double>(low, high)(rng); }
-
-MatrixX random_matrix(Index rows, Index cols, Rng& rng)
-{
-    MatrixX result(rows, cols);
-    for (Index k = 0; k < result.size(); ++k) {
-        result(k) = uniform(rng, -1, 1);
-    }
-    return result;
-}
-
-/// Q diag(1 .. condition, log-spaced) Q^T with a random orthogonal Q.
-MatrixX random_spd(Index n, double condition, Rng& rng)
-{
-    const MatrixX q = Eigen::HouseholderQR<MatrixX>(random_matrix(n, n, rng)).householderQ();
-    VectorX eigenvalues(n);
-    for (Index i = 0; i < n; ++i) {
-        eigenvalues(i) = std::pow(condition, static_cast<double>(i) / static_cast<double>(n - 1));
-    }
-    const MatrixX h = q * eigenvalues.asDiagonal() * q.transpose();
-    return 0.5 * (h + h.transpose());
-}
-
-/// The contact QP of the file comment, plus a sequence of slowly changing gradients.
-struct ContactQp {
-    MatrixX h;
-    VectorX g;
-    MatrixX c;
-    VectorX d;
-    std::vector<VectorX> sequence;  // g at successive 1 ms ticks
-};
-
-ContactQp contact_qp(Index contacts)
-{
-    Rng rng(static_cast<std::uint32_t>(1000 + contacts));
-    const Index n = 3 * contacts;
-    const Index facets = 13;
-    ContactQp p;
-    p.h = random_spd(n, 100.0, rng);
-    p.c = MatrixX::Zero(15 * contacts, n);
-    p.d = VectorX::Zero(15 * contacts);
-    VectorX desired(n);
-    for (Index k = 0; k < contacts; ++k) {
-        const Eigen::Matrix3d frame =
-            Eigen::Quaterniond(Eigen::Vector4d(random_matrix(4, 1, rng))).normalized().toRotationMatrix();
-        const double friction = uniform(rng, 0.3, 0.8);
-        for (Index j = 0; j < facets; ++j) {
-            const double angle = two_pi * static_cast<double>(j) / static_cast<double>(facets);
-            const Eigen::Vector3d local(std::cos(angle), std::sin(angle), -friction);
-            p.c.block(15 * k + j, 3 * k, 1, 3) = (frame * local).transpose();
-        }
-        p.c.block(15 * k + 13, 3 * k, 1, 3) = frame.col(2).transpose();
-        p.d(15 * k + 13) = 50.0;
-        p.c.block(15 * k + 14, 3 * k, 1, 3) = -frame.col(2).transpose();
-        p.d(15 * k + 14) = -1.0;
-        const Eigen::Vector3d local(uniform(rng, -12, 12), uniform(rng, -12, 12), uniform(rng, 0, 10));
-        desired.segment(3 * k, 3) = frame * local;
-    }
-    p.g = -p.h * desired;
-    const VectorX phase = random_matrix(n, 1, rng) * 3.0;
-    for (int tick = 0; tick < 1000; ++tick) {
-        VectorX moving = desired;
-        for (Index i = 0; i < n; ++i) {
-            moving(i) += 4.0 * std::sin(two_pi * 1e-3 * tick + phase(i));
-        }
-        p.sequence.push_back(-p.h * moving);
-    }
-    return p;
-}
-
-const ContactQp& case_for(Index contacts)
-{
-    static const ContactQp two = contact_qp(2);
-    static const ContactQp four = contact_qp(4);
-    return contacts == 2 ? two : four;
-}
 
 /// True when the result satisfies the KKT conditions to 1e-9 relative; otherwise skips.
 template <typename Result>
-bool check(benchmark::State& state, const ContactQp& p, const VectorX& g, const Result& result)
+bool check(benchmark::State& state, const ContactQp& p, const Eigen::VectorXd& g, const Result& result)
 {
-    const VectorX x = result.x;
-    const VectorX lambda = result.multipliers;
-    const double scale = p.h.norm() * x.norm() + g.norm() + p.c.norm() * lambda.norm();
-    const double stationarity = (p.h * x + g + p.c.transpose() * lambda).norm() / scale;
-    const VectorX slack = p.c * x - p.d;
-    const double feasibility = slack.maxCoeff() / (p.c.norm() * x.norm() + p.d.norm());
-    const double complementarity = lambda.cwiseProduct(slack).cwiseAbs().maxCoeff() / scale;
-    if (result.status != coopdyn::QpStatus::solved || stationarity > 1e-9 || feasibility > 1e-9 ||
-        complementarity > 1e-9 || lambda.minCoeff() < 0) {
+    if (!coopdyn_bench::satisfies_kkt(p, g, result)) {
         state.SkipWithError("QP result fails its KKT check");
         return false;
     }
     return true;
+}
+
+const ContactQp& case_for(Index contacts)
+{
+    static const ContactQp two = coopdyn_bench::contact_qp(2);
+    static const ContactQp four = coopdyn_bench::contact_qp(4);
+    return contacts == 2 ? two : four;
 }
 
 template <int Contacts> struct Fixed {
@@ -241,6 +166,54 @@ template <int Contacts> void BM_ColdDynamic(benchmark::State& state)
     }
 }
 
+/// The QpShape cases: 0 the two-palm 6 x 30, 1 the three-palm 12 x 45, 2 the random 20 x 80.
+const ContactQp& shape_case(int shape)
+{
+    static const ContactQp palms2 = coopdyn_bench::palm_qp(2);
+    static const ContactQp palms3 = coopdyn_bench::palm_qp(3);
+    static const ContactQp random = coopdyn_bench::random_qp(20, 80);
+    return shape == 0 ? palms2 : shape == 1 ? palms3 : random;
+}
+
+/// One solve: cold or warm, C given per call (four_args) or set once before (set_once).
+template <bool Warm, bool SetOnce, typename Solver, typename H, typename G, typename C, typename D>
+const typename Solver::Result& solve_with(Solver& solver, const H& h, const G& g, const C& c, const D& d)
+{
+#ifndef COOPDYN_QP_BASELINE
+    if constexpr (SetOnce) {
+        return Warm ? solver.solve_warm(h, g, d) : solver.solve(h, g, d);
+    }
+#endif
+    return Warm ? solver.solve_warm(h, g, c, d) : solver.solve(h, g, c, d);
+}
+
+template <int N, int M, int Shape, bool FixedSizes, bool Warm, bool SetOnce> void BM_Shape(benchmark::State& state)
+{
+    constexpr int n = FixedSizes ? N : Dynamic;
+    constexpr int m = FixedSizes ? M : Dynamic;
+    const ContactQp& p = shape_case(Shape);
+    if (p.h.rows() != N || p.c.rows() != M) {
+        state.SkipWithError("no such QP (no seeded case gave one)");
+        return;
+    }
+    const coopdyn_bench::SizedQp<n, m> q(p);
+    coopdyn::QpSolver<double, n, m> solver(N, M);
+#ifndef COOPDYN_QP_BASELINE
+    solver.set_constraints(q.c);
+#endif
+    solve_with<false, SetOnce>(solver, q.h, q.g, q.c, q.d);  // the warm start's active set
+    if (!check(state, p, p.g, solve_with<Warm, SetOnce>(solver, q.h, q.g, q.c, q.d))) {
+        return;
+    }
+    for (auto _ : state) {
+        benchmark::ClobberMemory();  // the inputs may change between ticks
+        const auto& result = solve_with<Warm, SetOnce>(solver, q.h, q.g, q.c, q.d);
+        benchmark::DoNotOptimize(result.x.data());
+    }
+    state.counters["steps"] = solver.result().iterations;
+    state.counters["active"] = solver.result().active_count;
+}
+
 }  // namespace
 
 // C = 2 (6 x 30) and C = 4 (12 x 60) for every benchmark.
@@ -254,3 +227,19 @@ COOPDYN_BENCHMARK_CONTACTS(BM_WarmSame);
 COOPDYN_BENCHMARK_CONTACTS(BM_ColdSequence);
 COOPDYN_BENCHMARK_CONTACTS(BM_WarmSequence);
 COOPDYN_BENCHMARK_CONTACTS(BM_ColdDynamic);
+
+// QpShape/<case>/<fixed|dynamic>/<cold|warm>/<api> for one case and one API.
+#define COOPDYN_BENCHMARK_SHAPE(N, M, SHAPE, LABEL, SET_ONCE, API)                                                     \
+    BENCHMARK_TEMPLATE(BM_Shape, N, M, SHAPE, true, false, SET_ONCE)->Name("QpShape/" LABEL "/fixed/cold/" API);     \
+    BENCHMARK_TEMPLATE(BM_Shape, N, M, SHAPE, true, true, SET_ONCE)->Name("QpShape/" LABEL "/fixed/warm/" API);      \
+    BENCHMARK_TEMPLATE(BM_Shape, N, M, SHAPE, false, false, SET_ONCE)->Name("QpShape/" LABEL "/dynamic/cold/" API);  \
+    BENCHMARK_TEMPLATE(BM_Shape, N, M, SHAPE, false, true, SET_ONCE)->Name("QpShape/" LABEL "/dynamic/warm/" API)
+
+COOPDYN_BENCHMARK_SHAPE(6, 30, 0, "palms2_6x30", false, "four_args");
+COOPDYN_BENCHMARK_SHAPE(12, 45, 1, "palms3_12x45", false, "four_args");
+COOPDYN_BENCHMARK_SHAPE(20, 80, 2, "random_20x80", false, "four_args");
+#ifndef COOPDYN_QP_BASELINE
+COOPDYN_BENCHMARK_SHAPE(6, 30, 0, "palms2_6x30", true, "set_once");
+COOPDYN_BENCHMARK_SHAPE(12, 45, 1, "palms3_12x45", true, "set_once");
+COOPDYN_BENCHMARK_SHAPE(20, 80, 2, "random_20x80", true, "set_once");
+#endif

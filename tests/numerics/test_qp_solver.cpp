@@ -8,7 +8,9 @@
 // C. infeasible problems, the iteration cap and a semidefinite H (statuses);
 // D. warm starts along slowly changing problems (control loop), against cold solves;
 // E. float against double;
-// F. no allocation (tests/allocation_counter.hpp), fixed and dynamic sizes.
+// F. no allocation (tests/allocation_counter.hpp), fixed and dynamic sizes;
+// G. constraints set once (set_constraints, solve(H, g, d)): the same results as solve_qp, the
+//    KKT conditions, and the new answer after C changes.
 #include "../allocation_counter.hpp"
 
 #include "coopdyn/numerics/qp_solver.hpp"
@@ -335,6 +337,21 @@ void expect_finite(const coopdyn::QpResult<double, coopdyn::Dynamic, coopdyn::Dy
     EXPECT_GE(result.multipliers.minCoeff(), 0.0);
 }
 
+/// Replaces the last row by -sum a_i c_i <= -sum a_i d_i - delta over rows 0 .. parts - 1 (a_i,
+/// delta > 0): a non-negative combination of the rows reads 0 <= -delta, so no x satisfies them
+/// (Farkas).
+void make_last_row_contradict(Problem& p, Index parts, Rng& rng)
+{
+    const Index m = p.c.rows();
+    p.c.row(m - 1).setZero();
+    p.d(m - 1) = -uniform(rng, 0.01, 1.0);
+    for (Index i = 0; i < parts; ++i) {
+        const double weight = uniform(rng, 0.1, 2.0);
+        p.c.row(m - 1) -= weight * p.c.row(i);
+        p.d(m - 1) -= weight * p.d(i);
+    }
+}
+
 TEST(QpSolverStatus, ContradictoryBoundsAreInfeasible)
 {
     // x_1 <= -1 and -x_1 <= -1 (x_1 >= 1).
@@ -366,13 +383,7 @@ TEST(QpSolverStatus, RandomInfeasibleProblems)
         p.c = random_matrix(m, n, rng);
         p.d = random_matrix(m, 1, rng);
         const Index parts = std::uniform_int_distribution<Index>(1, std::min<Index>(m - 1, n + 2))(rng);
-        p.c.row(m - 1).setZero();
-        p.d(m - 1) = -uniform(rng, 0.01, 1.0);
-        for (Index i = 0; i < parts; ++i) {
-            const double weight = uniform(rng, 0.1, 2.0);
-            p.c.row(m - 1) -= weight * p.c.row(i);
-            p.d(m - 1) -= weight * p.d(i);
-        }
+        make_last_row_contradict(p, parts, rng);
         DynamicSolver solver(n, m);
         const auto& result = solver.solve(p.h, p.g, p.c, p.d);
         infeasible += result.status == QpStatus::infeasible ? 1 : 0;
@@ -610,9 +621,18 @@ TEST(QpSolverAllocation, SolvesDoNotAllocate)
     coopdyn::QpSolver<double, 6, 30> fixed;
     DynamicSolver dynamic(12, 60);
     DynamicSolver dynamic_small(6, 30);
+    DynamicSolver dynamic_once(p4.c);
     int active = 0;
     const Allocations counts = count_allocations([&] {
+        coopdyn::QpSolver<double, 6, 30> fixed_once(c);  // fixed sizes: no heap, constructor included
         for (int tick = 0; tick < 10; ++tick) {
+            // C set once: the per-tick path of the controller.
+            active += fixed_once.solve(h, g, d).active_count;
+            active += fixed_once.solve_warm(h, g, d).active_count;
+            fixed_once.set_constraints(c);
+            dynamic_once.set_constraints(p4.c);
+            active += dynamic_once.solve(p4.h, g4, p4.d).active_count;
+            active += dynamic_once.solve_warm(p4.h, g4, p4.d).active_count;
             const auto result = coopdyn::solve_qp(h, g, c, d);
             active += result.active_count;
             active += fixed.solve(h, g, c, d).active_count;
@@ -630,13 +650,138 @@ TEST(QpSolverAllocation, SolvesDoNotAllocate)
         active += dynamic.solve(p4.h, g4, p4.c, p4.d).active_count;
         active += dynamic.solve_warm(p4.h, g4, p4.c, p4.d).active_count;
     });
+    const Allocations set_once_only = count_allocations([&] {
+        dynamic_once.set_constraints(p4.c);
+        active += dynamic_once.solve_warm(p4.h, g4, p4.d).active_count;
+    });
     EXPECT_EQ(one_shot.operator_new + one_shot.eigen, 0);
     EXPECT_EQ(dynamic_only.operator_new + dynamic_only.eigen, 0);
+    EXPECT_EQ(set_once_only.operator_new + set_once_only.eigen, 0);
     EXPECT_GT(active, 0);
     EXPECT_EQ(dynamic.result().status, QpStatus::solved);
-    std::printf("[qp allocation] 60 solves (fixed 6 x 30, dynamic 12 x 60 and 6 x 30, cold and warm): "
-                "operator new %ld, Eigen malloc %ld\n",
+    EXPECT_EQ(dynamic_once.result().status, QpStatus::solved);
+    std::printf("[qp allocation] 100 solves and 20 set_constraints (fixed 6 x 30, dynamic 12 x 60 and 6 x 30, cold "
+                "and warm, C per solve and C set once): operator new %ld, Eigen malloc %ld\n",
                 counts.operator_new, counts.eigen);
+}
+
+// ---------------------------------------------------------------------------------------------
+// G. Constraints set once.
+
+/// A problem of n variables and m rows: random_problem with m / 8 degenerate rows, 1 .. n rows
+/// active at the optimum and cond(H) up to 1e6; when `feasible` is false its last row is made to
+/// contradict the first few (make_last_row_contradict).
+Problem shaped_problem(Index n, Index m, bool feasible, Rng& rng)
+{
+    const Index degenerate = m / 8;
+    const Index active = std::uniform_int_distribution<Index>(1, n)(rng);
+    Problem p = random_problem(n, m - degenerate, active, degenerate, std::pow(10.0, uniform(rng, 0, 6)), rng);
+    if (!feasible) {
+        make_last_row_contradict(p, std::uniform_int_distribution<Index>(1, n + 2)(rng), rng);
+    }
+    return p;
+}
+
+/// Bit-identical results: the set-once path and solve_qp run the same arithmetic.
+template <typename A, typename B> void expect_same_result(const A& a, const B& b, const char* what, int k)
+{
+    EXPECT_EQ(a.status, b.status) << what << " problem " << k;
+    EXPECT_EQ(a.iterations, b.iterations) << what << " problem " << k;
+    EXPECT_EQ(a.active_count, b.active_count) << what << " problem " << k;
+    EXPECT_TRUE(a.x == b.x) << what << " problem " << k;
+    EXPECT_TRUE(a.multipliers == b.multipliers) << what << " problem " << k;
+    EXPECT_TRUE(a.active == b.active) << what << " problem " << k;
+    EXPECT_EQ(a.objective, b.objective) << what << " problem " << k;
+}
+
+/// For `problems` seeded problems of N variables and M rows (every second one infeasible): a
+/// fixed-size and a dynamic-size solver given C once (constructor) agree with solve_qp of the
+/// same sizes, cold and then warm from the previous problem's active set; the feasible ones
+/// satisfy the KKT conditions (tolerances of test A). Returns the number solved.
+template <int N, int M> int check_set_once_shape(int problems, Rng& rng)
+{
+    using Fixed = coopdyn::QpSolver<double, N, M>;
+    int solved = 0;
+    Fixed fixed_once{Eigen::Matrix<double, M, N>::Zero()};
+    Fixed fixed_four;
+    DynamicSolver dynamic_once(N, M);
+    DynamicSolver dynamic_four(N, M);
+    for (int k = 0; k < problems; ++k) {
+        const bool feasible = k % 2 == 0;
+        const Problem p = shaped_problem(N, M, feasible, rng);
+        const Eigen::Matrix<double, N, N> h = p.h;
+        const Eigen::Matrix<double, N, 1> g = p.g;
+        const Eigen::Matrix<double, M, N> c = p.c;
+        const Eigen::Matrix<double, M, 1> d = p.d;
+        const auto reference = coopdyn::solve_qp(h, g, c, d);
+        const auto dynamic_reference = coopdyn::solve_qp(p.h, p.g, p.c, p.d);
+        expect_same_result(Fixed(c).solve(h, g, d), reference, "fixed, constructor", k);
+        expect_same_result(DynamicSolver(p.c).solve(p.h, p.g, p.d), dynamic_reference, "dynamic, constructor", k);
+        // Warm from the previous problem's active set: set_constraints then the three-argument
+        // solve against the four-argument one from the same state.
+        fixed_once.set_constraints(c);
+        dynamic_once.set_constraints(p.c);
+        expect_same_result(fixed_once.solve_warm(h, g, d), fixed_four.solve_warm(h, g, c, d), "fixed, warm", k);
+        expect_same_result(dynamic_once.solve_warm(p.h, p.g, p.d), dynamic_four.solve_warm(p.h, p.g, p.c, p.d),
+                           "dynamic, warm", k);
+        EXPECT_EQ(reference.status, feasible ? QpStatus::solved : QpStatus::infeasible) << "problem " << k;
+        EXPECT_EQ(dynamic_reference.status, reference.status) << "problem " << k;
+        if (reference.status != QpStatus::solved) {
+            continue;
+        }
+        ++solved;
+        const Kkt residuals = kkt_residuals(p, fixed_once.result().x, fixed_once.result().multipliers);
+        EXPECT_LE(residuals.stationarity, 4 * eps * static_cast<double>(2 * N + 1 + fixed_once.result().iterations))
+            << "problem " << k;
+        EXPECT_LE(residuals.feasibility, 1000 * eps * p.condition) << "problem " << k;
+        EXPECT_LE(residuals.dual, 0.0) << "problem " << k;
+        EXPECT_LE(residuals.complementarity, 1000 * eps * p.condition) << "problem " << k;
+    }
+    return solved;
+}
+
+TEST(QpSolverSetOnce, SameResultsAsSolveQp)
+{
+    Rng rng(4521);
+    const int problems = 40;
+    const int solved_6 = check_set_once_shape<6, 30>(problems, rng);
+    const int solved_12 = check_set_once_shape<12, 45>(problems, rng);
+    const int solved_20 = check_set_once_shape<20, 80>(problems, rng);
+    EXPECT_EQ(solved_6, problems / 2);
+    EXPECT_EQ(solved_12, problems / 2);
+    EXPECT_EQ(solved_20, problems / 2);
+    std::printf("[qp set once] 6 x 30, 12 x 45, 20 x 80: %d problems each (half infeasible), fixed and dynamic, "
+                "cold and warm: identical to solve_qp\n",
+                problems);
+}
+
+TEST(QpSolverSetOnce, NewConstraintsGiveTheNewAnswer)
+{
+    Rng rng(77);
+    int changed = 0;
+    for (int k = 0; k < 60; ++k) {
+        const Problem first = shaped_problem(6, 30, true, rng);
+        const Problem second = shaped_problem(6, 30, k % 3 != 0, rng);
+        const auto first_answer = coopdyn::solve_qp(first.h, first.g, first.c, first.d);
+        // The same H and g with the second problem's rows and bounds.
+        const auto reference = coopdyn::solve_qp(first.h, first.g, second.c, second.d);
+        DynamicSolver solver(first.c);
+        expect_same_result(solver.solve(first.h, first.g, first.d), first_answer, "first C", k);
+        solver.set_constraints(second.c);
+        EXPECT_TRUE(solver.constraints() == second.c);
+        expect_same_result(solver.solve(first.h, first.g, second.d), reference, "second C", k);
+        changed += (reference.x - first_answer.x).norm() > 1e-6 * (1 + first_answer.x.norm()) ? 1 : 0;
+        // Warm across the change: the first C's active set is only a starting guess.
+        solver.set_constraints(first.c);
+        solver.solve(first.h, first.g, first.d);
+        solver.set_constraints(second.c);
+        const auto& warm = solver.solve_warm(first.h, first.g, second.d);
+        ASSERT_EQ(warm.status, reference.status) << "problem " << k;
+        if (reference.status == QpStatus::solved) {
+            EXPECT_LE((warm.x - reference.x).norm(), 1e-9 * (1 + reference.x.norm())) << "problem " << k;
+        }
+    }
+    EXPECT_GE(changed, 50);  // the new rows move the answer (a check that the test tests)
 }
 
 }  // namespace

@@ -134,7 +134,7 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       gradient(InternalVector::Zero(6 * (model.arms() - 1))),
       constraints(model.contact_qp_constraints()),
       bounds(Eigen::Matrix<Scalar, Rows, 1>::Zero(model.rows())),
-      qp(6 * (model.arms() - 1), model.rows()),
+      qp(model.contact_qp_constraints()),  // C is constant: set once, each tick solves with H, g, d
       fallback_hessian(Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)>::Zero(6 * model.arms() - 5,
                                                                                            6 * model.arms() - 5)),
       fallback_gradient(Eigen::Matrix<Scalar, plus_one(Internal), 1>::Zero(6 * model.arms() - 5)),
@@ -251,8 +251,8 @@ template <typename Model, typename Data> void controller_solve_squeeze(const Mod
 {
     using Scalar = typename Model::Scalar;
     const bool warm = data.warm && model.qp_options().warm_start;
-    const auto& result = warm ? data.qp.solve_warm(data.hessian, data.gradient, data.constraints, data.bounds)
-                              : data.qp.solve(data.hessian, data.gradient, data.constraints, data.bounds);
+    const auto& result = warm ? data.qp.solve_warm(data.hessian, data.gradient, data.bounds)
+                              : data.qp.solve(data.hessian, data.gradient, data.bounds);
     data.qp_ran = true;
     data.qp_status = result.status;
     data.qp_iterations = result.iterations;

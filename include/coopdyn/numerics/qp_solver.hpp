@@ -21,15 +21,17 @@
 ///   satisfies p together with the active rows: the problem is infeasible;
 /// - when no row is violated, x is optimal (all KKT conditions hold).
 ///
-/// Numerics: H is factorised once (L L^T: FixedLlt for fixed sizes, Eigen::LLT
-/// otherwise); the solver keeps J = L^-T Q (Q orthogonal) and the upper-triangular R with
-/// J^T [active rows as columns] = [R; 0], updated by Givens rotations when a row enters or leaves
-/// (never refactorised, never inverted).
+/// Numerics: H is factorised once per solve (L L^T: FixedLlt for fixed sizes, Eigen::LLT
+/// otherwise); J = L^-T Q (Q orthogonal) and the upper-triangular R with J^T [active rows as
+/// columns] = [R; 0] are updated by Givens rotations when a row enters or leaves, never
+/// refactorised, never inverted (numerics/qp_active_set.hpp). C is kept between solves, as C and
+/// C^T with its rows' norms, so a constant C is given once (set_constraints).
 #pragma once
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/numerics/fixed_llt.hpp"
 #include "coopdyn/numerics/pivot_policy.hpp"
+#include "coopdyn/numerics/qp_active_set.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -103,10 +105,13 @@ template <typename Scalar, int Variables, int Rows> struct QpResult {
 ///
 /// `Variables` (n) and `Rows` (m) are compile-time sizes or Eigen::Dynamic. For fixed sizes the
 /// object holds everything inline (no heap at all); for dynamic sizes the constructor allocates
-/// once and solve() / solve_warm() allocate nothing. Solves are noexcept; their size and
-/// finiteness preconditions are debug assertions, except that a problem of another size than the
-/// workspace stops the program in Release too (COOPDYN_REQUIRE_SHAPE), instead of writing past a
-/// buffer.
+/// once and nothing else does. Solves are noexcept; their size and finiteness preconditions are
+/// debug assertions, except that a problem of another size than the workspace stops the program
+/// in Release too (COOPDYN_REQUIRE_SHAPE), instead of writing past a buffer.
+///
+/// Constant constraints (a controller's friction rows): give C once (constructor or
+/// set_constraints()) and solve each tick with H, g and d only. solve(H, g, C, d) is
+/// set_constraints(C) followed by solve(H, g, d): the same answer.
 template <typename Scalar, int Variables, int Rows> class QpSolver {
     static_assert(Variables == Eigen::Dynamic || Variables > 0, "QpSolver: at least one variable");
     static_assert(Rows == Eigen::Dynamic || Rows > 0,
@@ -114,9 +119,11 @@ template <typename Scalar, int Variables, int Rows> class QpSolver {
 
 public:
     using Result = QpResult<Scalar, Variables, Rows>;
+    /// C, m x n.
+    using ConstraintMatrix = Eigen::Matrix<Scalar, Rows, Variables>;
 
     /// Workspace for fixed sizes (a template so that an explicit instantiation for dynamic sizes
-    /// does not instantiate it).
+    /// does not instantiate it). C is zero until set_constraints().
     template <int V = Variables, int R = Rows,
               std::enable_if_t<V != Eigen::Dynamic && R != Eigen::Dynamic, int> = 0>
     QpSolver() : QpSolver(Variables, Rows)
@@ -124,26 +131,23 @@ public:
     }
 
     /// Workspace for n = `variables` unknowns and m = `rows` inequality rows (must equal the
-    /// compile-time sizes when those are fixed). Allocates all dynamic storage.
+    /// compile-time sizes when those are fixed). Allocates all dynamic storage. C is zero until
+    /// set_constraints().
     QpSolver(Index variables, Index rows)
         : variables_(variables),
           rows_(rows),
           iteration_limit_(default_iteration_limit(variables, rows)),
           llt_(variables),
           gradient_(variables),
-          constraints_(variables, rows),
+          constraints_(ConstraintMatrix::Zero(rows, variables)),
+          normals_(NormalMatrix::Zero(variables, rows)),
           bounds_(rows),
-          row_norms_(rows),
+          row_norms_(RowVector::Zero(rows)),
+          inverse_row_norms_(RowVector::Zero(rows)),
           violations_(rows),
           is_active_(rows),
-          basis_(variables, variables),
-          triangle_(variables, variables),
-          step_(variables),
-          direction_(variables),
-          dual_direction_(variables),
-          active_multipliers_(variables),
-          active_rows_(variables),
           warm_rows_(variables),
+          active_(variables),
           result_(variables, rows)
     {
         COOPDYN_REQUIRE_SHAPE(variables > 0 && rows >= 0, "QpSolver: needs n > 0 variables and m >= 0 rows");
@@ -151,6 +155,14 @@ public:
                               "QpSolver: number of variables differs from the compile-time size");
         COOPDYN_REQUIRE_SHAPE(Rows == Eigen::Dynamic || rows == Rows,
                               "QpSolver: number of rows differs from the compile-time size");
+    }
+
+    /// Workspace sized by C (n = its columns, m = its rows), with C set (set_constraints): for a
+    /// problem whose constraint matrix is constant.
+    template <typename C>
+    explicit QpSolver(const Eigen::MatrixBase<C>& constraints) : QpSolver(constraints.cols(), constraints.rows())
+    {
+        set_constraints(constraints);
     }
 
     /// n, the number of variables.
@@ -181,39 +193,83 @@ public:
     /// The result of the last solve (all zero before the first one).
     const Result& result() const noexcept { return result_; }
 
-    /// \brief Cold solve of min 1/2 x^T H x + g^T x s.t. C x <= d.
+    /// \brief Sets C (m x n) for the solves that follow: kept as C (for C x, all rows at once) and
+    /// as C^T (each row's normal a contiguous column), with the rows' norms and their inverses.
+    /// Allocates nothing (the workspace was sized at construction). The previous solve's active
+    /// set stays the warm start of the next solve_warm().
+    template <typename C> void set_constraints(const Eigen::MatrixBase<C>& constraints) noexcept
+    {
+        static_assert(detail::sizes_agree(C::ColsAtCompileTime, Variables) &&
+                          detail::sizes_agree(C::RowsAtCompileTime, Rows),
+                      "QpSolver: C's sizes disagree with the solver's sizes");
+        COOPDYN_REQUIRE_SHAPE(constraints.rows() == rows_ && constraints.cols() == variables_,
+                              "QpSolver: C sized for another problem");
+        COOPDYN_ASSERT(constraints.allFinite(), "QpSolver: C not finite");
+        constraints_ = constraints;
+        normals_ = constraints_.transpose();
+        // Square roots of the whole vector at once (they vectorise; one per row would not).
+        row_norms_ = constraints_.rowwise().squaredNorm();
+        row_norms_ = row_norms_.cwiseSqrt();
+        // 1 / |c_i| for the most-violated scan (multiplied, not divided, on every scan), all at
+        // once (vectorised divisions); a zero row's +inf is never read (most_violated_row
+        // returns such a row before using its inverse).
+        inverse_row_norms_ = row_norms_.cwiseInverse();
+    }
+
+    /// The C of the last set_constraints() (zero before it).
+    const ConstraintMatrix& constraints() const noexcept { return constraints_; }
+
+    /// \brief Cold solve of min 1/2 x^T H x + g^T x s.t. C x <= d, C the one set last
+    /// (constructor or set_constraints()).
     /// \param hessian H, n x n symmetric positive definite (only its lower triangle is read).
     /// \param gradient g, n.
-    /// \param constraints C, m x n.
     /// \param bounds d, m.
     /// \return result(): x, multipliers, status, active set (valid until the next solve).
-    template <typename H, typename G, typename C, typename D>
+    template <typename H, typename G, typename D>
     const Result& solve(const Eigen::MatrixBase<H>& hessian, const Eigen::MatrixBase<G>& gradient,
-                        const Eigen::MatrixBase<C>& constraints, const Eigen::MatrixBase<D>& bounds) noexcept
+                        const Eigen::MatrixBase<D>& bounds) noexcept
     {
-        load(hessian, gradient, constraints, bounds);
+        load(hessian, gradient, bounds);
         run(false);
         return result_;
     }
 
-    /// \brief Warm solve: as solve(), starting from the active set of the previous solve. The rows
-    /// active last time are added first, each by the same Goldfarb-Idnani steps as any other row
-    /// (a row that no longer fits is dropped again by those steps), then the ordinary iteration
-    /// finishes. The answer is the same as solve()'s (the minimiser is unique); when consecutive
-    /// problems share their active set it usually takes fewer steps.
+    /// \brief Warm solve: as solve(H, g, d), starting from the active set of the previous solve.
+    /// The rows active last time are added first, each by the same Goldfarb-Idnani steps as any
+    /// other row (a row that no longer fits is dropped again by those steps), then the ordinary
+    /// iteration finishes. The answer is the same as solve()'s (the minimiser is unique); when
+    /// consecutive problems share their active set it usually takes fewer steps.
+    template <typename H, typename G, typename D>
+    const Result& solve_warm(const Eigen::MatrixBase<H>& hessian, const Eigen::MatrixBase<G>& gradient,
+                             const Eigen::MatrixBase<D>& bounds) noexcept
+    {
+        load(hessian, gradient, bounds);
+        run(true);
+        return result_;
+    }
+
+    /// \brief Cold solve with C given too: set_constraints(C), then solve(H, g, d).
+    template <typename H, typename G, typename C, typename D>
+    const Result& solve(const Eigen::MatrixBase<H>& hessian, const Eigen::MatrixBase<G>& gradient,
+                        const Eigen::MatrixBase<C>& constraints, const Eigen::MatrixBase<D>& bounds) noexcept
+    {
+        set_constraints(constraints);
+        return solve(hessian, gradient, bounds);
+    }
+
+    /// \brief Warm solve with C given too: set_constraints(C), then solve_warm(H, g, d).
     template <typename H, typename G, typename C, typename D>
     const Result& solve_warm(const Eigen::MatrixBase<H>& hessian, const Eigen::MatrixBase<G>& gradient,
                              const Eigen::MatrixBase<C>& constraints, const Eigen::MatrixBase<D>& bounds) noexcept
     {
-        load(hessian, gradient, constraints, bounds);
-        run(true);
-        return result_;
+        set_constraints(constraints);
+        return solve_warm(hessian, gradient, bounds);
     }
 
 private:
     using Matrix = Eigen::Matrix<Scalar, Variables, Variables>;
     using Vector = Eigen::Matrix<Scalar, Variables, 1>;
-    using ConstraintMatrix = Eigen::Matrix<Scalar, Variables, Rows>;
+    using NormalMatrix = Eigen::Matrix<Scalar, Variables, Rows>;
     using RowVector = Eigen::Matrix<Scalar, Rows, 1>;
     using RowFlags = Eigen::Matrix<int, Rows, 1>;
     using ActiveList = Eigen::Matrix<int, Variables, 1>;
@@ -221,35 +277,31 @@ private:
     /// What one step did to the row being added.
     enum class Step { added, dropped, infeasible };
 
-    /// Checks the shapes and copies the problem into the workspace: C transposed, so that each
-    /// row's normal is a contiguous column.
-    template <typename H, typename G, typename C, typename D>
+    /// Checks the shapes, factorises H and copies g and d into the workspace.
+    template <typename H, typename G, typename D>
     void load(const Eigen::MatrixBase<H>& hessian, const Eigen::MatrixBase<G>& gradient,
-              const Eigen::MatrixBase<C>& constraints, const Eigen::MatrixBase<D>& bounds) noexcept
+              const Eigen::MatrixBase<D>& bounds) noexcept
     {
         static_assert(detail::sizes_agree(H::RowsAtCompileTime, Variables) &&
                           detail::sizes_agree(H::ColsAtCompileTime, Variables) &&
                           detail::sizes_agree(G::RowsAtCompileTime, Variables) &&
-                          detail::sizes_agree(C::ColsAtCompileTime, Variables) &&
-                          detail::sizes_agree(C::RowsAtCompileTime, Rows) &&
                           detail::sizes_agree(D::RowsAtCompileTime, Rows),
                       "QpSolver: argument sizes disagree with the solver's sizes");
         // One comparison each (none survive for fixed sizes): a wrong size would read or write
         // past the workspace.
         COOPDYN_REQUIRE_SHAPE(hessian.rows() == variables_ && hessian.cols() == variables_ &&
                                   gradient.rows() == variables_ && gradient.cols() == 1 &&
-                                  constraints.rows() == rows_ && constraints.cols() == variables_ &&
                                   bounds.rows() == rows_ && bounds.cols() == 1,
-                              "QpSolver: H, g, C or d sized for another problem");
+                              "QpSolver: H, g or d sized for another problem");
         COOPDYN_ASSERT(hessian.allFinite() && gradient.allFinite(), "QpSolver: H or g not finite");
-        COOPDYN_ASSERT(constraints.allFinite() && bounds.allFinite(), "QpSolver: C or d not finite");
+        COOPDYN_ASSERT(bounds.allFinite(), "QpSolver: d not finite");
         llt_.compute(hessian);
         gradient_ = gradient;
-        constraints_ = constraints.transpose();
         bounds_ = bounds;
     }
 
-    /// The whole iteration; writes result_.
+    /// The whole iteration; writes result_. A warm start first re-adds the previous solve's
+    /// active rows (those violated at the current iterate), in their order of entry.
     void run(bool warm) noexcept
     {
         const int warm_count = warm ? result_.active_count : 0;
@@ -257,11 +309,16 @@ private:
             warm_rows_(k) = result_.active(k);
         }
         reset_result();
-        if (!factorise()) {
+        // H = L L^T; refused when not numerically positive definite by the pivot policy
+        // (numerics/pivot_policy.hpp: a pivot L_jj^2 at or below 1000 eps max_i H_ii counts as
+        // zero): J = L^-T would amplify the rounding noise such a pivot holds.
+        if (!regular_llt(llt_)) {
             result_.status = QpStatus::not_positive_definite;
             return;
         }
-        start_unconstrained();
+        active_.start(llt_.matrixLLT());
+        active_.unconstrained_minimum(gradient_, result_.x);
+        is_active_.setZero();
         QpStatus status = QpStatus::solved;
         for (int k = 0; k < warm_count && status == QpStatus::solved; ++k) {
             const Index row = warm_rows_(k);
@@ -289,61 +346,11 @@ private:
         result_.objective = 0;
     }
 
-    /// H = L L^T and J = L^-T (Q = I, no row active). False when H is not numerically positive
-    /// definite by the pivot policy (numerics/pivot_policy.hpp: a pivot L_jj^2 at or below
-    /// 1000 eps max_i H_ii counts as zero): J would amplify the rounding noise such a pivot holds.
-    bool factorise() noexcept
-    {
-        if (!regular_llt(llt_)) {
-            return false;
-        }
-        invert_transposed_factor();
-        return true;
-    }
-
-    /// basis_ = L^-T (upper triangular), by back substitution on L^T J = I, column by column; also
-    /// |L^-1|_F, the scale of the rounding in J^T c (used by the dependence test).
-    void invert_transposed_factor() noexcept
-    {
-        const auto& factor = llt_.matrixLLT();
-        // 1 / L_ii, kept in step_ (free until the first step): n divisions instead of n^2 / 2.
-        for (Index i = 0; i < variables_; ++i) {
-            step_(i) = Scalar(1) / factor(i, i);
-        }
-        basis_.setZero();
-        for (Index column = 0; column < variables_; ++column) {
-            basis_(column, column) = step_(column);
-            for (Index i = column - 1; i >= 0; --i) {
-                Scalar sum = 0;
-                for (Index k = i + 1; k <= column; ++k) {
-                    sum += factor(k, i) * basis_(k, column);
-                }
-                basis_(i, column) = -sum * step_(i);
-            }
-        }
-        basis_norm_ = basis_.norm();
-    }
-
-    /// x = -H^-1 g = -J J^T g; no row active.
-    void start_unconstrained() noexcept
-    {
-        step_.noalias() = basis_.transpose() * gradient_;
-        x().noalias() = basis_ * step_;
-        x() = -x();  // negated apart: -(product) would evaluate into a heap temporary for dynamic sizes
-        // Square roots of the whole vector at once (they vectorise; one per row would not).
-        row_norms_ = constraints_.colwise().squaredNorm().transpose();
-        row_norms_ = row_norms_.cwiseSqrt();
-        is_active_.setZero();
-        active_count_ = 0;
-    }
-
-    Vector& x() noexcept { return result_.x; }
-
     /// c_i^T x - d_i when it exceeds the rounding level of evaluating it, else 0.
     Scalar violation_of(Index row) const noexcept
     {
         using std::abs;
-        const Scalar residual = constraints_.col(row).dot(result_.x) - bounds_(row);
+        const Scalar residual = normals_.col(row).dot(result_.x) - bounds_(row);
         const Scalar noise = feasibility_tolerance() * (row_norms_(row) * result_.x.norm() + abs(bounds_(row)));
         return residual > noise ? residual : Scalar(0);
     }
@@ -354,23 +361,22 @@ private:
     Index most_violated_row() noexcept
     {
         using std::abs;
-        violations_.noalias() = constraints_.transpose() * result_.x;
+        // C x for all rows at once: C is column-major m x n, so this is n vectorised column
+        // updates (coefficient-based: no GEMV dispatch at these sizes).
+        violations_.noalias() = constraints_.lazyProduct(result_.x);
         const Scalar x_norm = result_.x.norm();
         Index worst = -1;
         Scalar worst_distance = 0;
         for (Index i = 0; i < rows_; ++i) {
-            if (is_active_(i)) {
-                continue;
-            }
             const Scalar residual = violations_(i) - bounds_(i);
             const Scalar noise = feasibility_tolerance() * (row_norms_(i) * x_norm + abs(bounds_(i)));
-            if (!(residual > noise)) {
+            if (is_active_(i) || !(residual > noise)) {
                 continue;
             }
             if (!(row_norms_(i) > 0)) {
                 return i;
             }
-            const Scalar distance = residual / row_norms_(i);
+            const Scalar distance = residual * inverse_row_norms_(i);
             if (distance > worst_distance) {
                 worst_distance = distance;
                 worst = i;
@@ -402,214 +408,43 @@ private:
     /// One primal/dual step towards activating `row` (see the file comment).
     Step take_step(Index row, Scalar& entering_multiplier) noexcept
     {
-        const Scalar complement_squared = compute_directions(row);
-        const Index blocking = blocking_position();
-        const Scalar partial_length = blocking >= 0 ? active_multipliers_(blocking) / dual_direction_(blocking)
-                                                    : std::numeric_limits<Scalar>::infinity();
-        if (!primal_step_possible(row, complement_squared)) {
+        const Scalar complement_squared = active_.compute_directions(normals_.col(row));
+        const Index blocking = active_.blocking_position();
+        const Scalar partial_length = active_.partial_length(blocking);
+        if (!active_.primal_step_possible(complement_squared, row_norms_(row))) {
             if (blocking < 0) {
                 return Step::infeasible;  // no multiplier can give way: the rows contradict
             }
-            move_multipliers(partial_length, entering_multiplier);
-            drop_active(blocking);
+            active_.move_multipliers(partial_length, entering_multiplier);
+            is_active_(active_.drop(blocking)) = 0;
             return Step::dropped;
         }
         // Along z, c_p^T x decreases by |d2|^2 per unit step (z^T c_p = -|J2^T c_p|^2).
         using std::max;
-        const Scalar residual = constraints_.col(row).dot(result_.x) - bounds_(row);
+        const Scalar residual = normals_.col(row).dot(result_.x) - bounds_(row);
         const Scalar full_length = max(residual, Scalar(0)) / complement_squared;
         if (full_length <= partial_length) {
-            x() += full_length * direction_;
-            move_multipliers(full_length, entering_multiplier);
-            append_active(row, entering_multiplier);
+            result_.x += full_length * active_.direction();
+            active_.move_multipliers(full_length, entering_multiplier);
+            active_.append(static_cast<int>(row), entering_multiplier);
+            is_active_(row) = 1;
             return Step::added;
         }
-        x() += partial_length * direction_;
-        move_multipliers(partial_length, entering_multiplier);
-        drop_active(blocking);
+        result_.x += partial_length * active_.direction();
+        active_.move_multipliers(partial_length, entering_multiplier);
+        is_active_(active_.drop(blocking)) = 0;
         return Step::dropped;
-    }
-
-    /// For the row p being added, with n_p = -c_p (Goldfarb and Idnani write rows as n^T x >= b):
-    /// step_ = J^T n_p; direction_ = z = J2 J2^T n_p (the primal direction, J2 the last n - q
-    /// columns of J); dual_direction_ = r = R^-1 (J1^T n_p) (how fast the active multipliers
-    /// decrease). Returns |J2^T n_p|^2 = z^T n_p.
-    Scalar compute_directions(Index row) noexcept
-    {
-        const Index q = active_count_;
-        step_.noalias() = basis_.transpose() * constraints_.col(row);
-        step_ = -step_;  // n_p = -c_p; negated apart, see start_unconstrained
-        direction_.setZero();
-        Scalar complement_squared = 0;
-        for (Index j = q; j < variables_; ++j) {
-            direction_ += step_(j) * basis_.col(j);
-            complement_squared += step_(j) * step_(j);
-        }
-        solve_triangle(q);
-        return complement_squared;
-    }
-
-    /// r = R^-1 step_.head(q) by back substitution. An entry within the rounding of its own
-    /// computation is set to zero: its sign is noise, and a noise-positive r_j would drop a row
-    /// (or hide an infeasibility) for no reason.
-    void solve_triangle(Index q) noexcept
-    {
-        using std::abs;
-        const Scalar noise = Scalar(8) * static_cast<Scalar>(variables_) * std::numeric_limits<Scalar>::epsilon();
-        for (Index i = q - 1; i >= 0; --i) {
-            Scalar sum = step_(i);
-            Scalar magnitude = abs(step_(i));
-            for (Index k = i + 1; k < q; ++k) {
-                sum -= triangle_(i, k) * dual_direction_(k);
-                magnitude += abs(triangle_(i, k) * dual_direction_(k));
-            }
-            dual_direction_(i) = abs(sum) > noise * magnitude ? sum / triangle_(i, i) : Scalar(0);
-        }
-    }
-
-    /// z counts as zero when |J2^T c_p| is within the rounding of J^T c_p (about eps |L^-1|_F |c_p|,
-    /// amplified by the rotations applied to J): c_p then depends linearly on the active rows.
-    bool primal_step_possible(Index row, Scalar complement_squared) const noexcept
-    {
-        const Scalar floor = Scalar(64) * static_cast<Scalar>(variables_) * std::numeric_limits<Scalar>::epsilon() *
-                             basis_norm_ * row_norms_(row);
-        return complement_squared > floor * floor;
-    }
-
-    /// Position in the active set of the row whose multiplier reaches zero first along the dual
-    /// direction (smallest u_j / r_j over r_j > 0), or -1 when no multiplier decreases.
-    Index blocking_position() const noexcept
-    {
-        Index blocking = -1;
-        Scalar shortest = 0;
-        for (Index j = 0; j < active_count_; ++j) {
-            if (dual_direction_(j) > 0) {
-                const Scalar length = active_multipliers_(j) / dual_direction_(j);
-                if (blocking < 0 || length < shortest) {
-                    shortest = length;
-                    blocking = j;
-                }
-            }
-        }
-        return blocking;
-    }
-
-    /// u_active -= t r, u_p += t (clamped at zero: the blocking multiplier lands there up to
-    /// rounding).
-    void move_multipliers(Scalar length, Scalar& entering_multiplier) noexcept
-    {
-        using std::max;
-        for (Index j = 0; j < active_count_; ++j) {
-            active_multipliers_(j) = max(active_multipliers_(j) - length * dual_direction_(j), Scalar(0));
-        }
-        entering_multiplier += length;
-    }
-
-    /// Rotates J^T c_p (step_) so that its entries q+1.. vanish, applying the same rotations to
-    /// J's columns, and appends the result as R's new column q.
-    void append_active(Index row, Scalar multiplier) noexcept
-    {
-        const Index q = active_count_;
-        for (Index j = variables_ - 1; j > q; --j) {
-            rotate_basis(j - 1, j, step_(j - 1), step_(j));
-        }
-        for (Index i = 0; i <= q; ++i) {
-            triangle_(i, q) = step_(i);
-        }
-        active_rows_(q) = static_cast<int>(row);
-        active_multipliers_(q) = multiplier;
-        is_active_(row) = 1;
-        ++active_count_;
-    }
-
-    /// Removes the active row at `position`: R loses that column, and the rotations that restore
-    /// its triangular shape are applied to J's columns as well.
-    void drop_active(Index position) noexcept
-    {
-        const Index q = active_count_;
-        is_active_(active_rows_(position)) = 0;
-        for (Index j = position; j + 1 < q; ++j) {
-            active_rows_(j) = active_rows_(j + 1);
-            active_multipliers_(j) = active_multipliers_(j + 1);
-            triangle_.col(j).head(j + 2) = triangle_.col(j + 1).head(j + 2);
-        }
-        // Column j now has a subdiagonal entry R(j + 1, j); rotating rows j, j + 1 zeroes it.
-        for (Index j = position; j + 1 < q; ++j) {
-            Scalar& top = triangle_(j, j);
-            Scalar& bottom = triangle_(j + 1, j);
-            const Givens rotation = Givens::zeroing(top, bottom);
-            top = rotation.norm;
-            bottom = 0;
-            for (Index k = j + 1; k + 1 < q; ++k) {
-                rotation.apply(triangle_(j, k), triangle_(j + 1, k));
-            }
-            rotation.apply_to_columns(basis_, j, j + 1);
-        }
-        triangle_.col(q - 1).setZero();
-        --active_count_;
-    }
-
-    /// A plane rotation [c s; -s c] with c a + s b = |(a, b)| and -s a + c b = 0.
-    struct Givens {
-        Scalar c = 1;
-        Scalar s = 0;
-        Scalar norm = 0;
-
-        static Givens zeroing(Scalar a, Scalar b) noexcept
-        {
-            using std::sqrt;
-            Givens rotation;
-            rotation.norm = sqrt(a * a + b * b);
-            if (rotation.norm > 0) {
-                const Scalar inverse = Scalar(1) / rotation.norm;
-                rotation.c = a * inverse;
-                rotation.s = b * inverse;
-            }
-            return rotation;
-        }
-        void apply(Scalar& a, Scalar& b) const noexcept
-        {
-            const Scalar first = c * a + s * b;
-            b = -s * a + c * b;
-            a = first;
-        }
-        /// The same rotation on J's columns (J^T's rows), keeping J^T [rows] = [R; 0]. Through
-        /// plain pointers to the two (contiguous, distinct) columns so that the loop vectorises:
-        /// these rotations are the largest part of a step.
-        void apply_to_columns(Matrix& matrix, Index first, Index second) const noexcept
-        {
-            Scalar* x = matrix.col(first).data();
-            Scalar* y = matrix.col(second).data();
-            for (Index i = 0; i < matrix.rows(); ++i) {
-                const Scalar xi = x[i];
-                const Scalar yi = y[i];
-                x[i] = c * xi + s * yi;
-                y[i] = -s * xi + c * yi;
-            }
-        }
-    };
-
-    /// Zeroes step_(second) against step_(first), rotating J's columns alike.
-    void rotate_basis(Index first, Index second, Scalar& a, Scalar& b) noexcept
-    {
-        const Givens rotation = Givens::zeroing(a, b);
-        if (!(rotation.norm > 0)) {
-            return;
-        }
-        a = rotation.norm;
-        b = 0;
-        rotation.apply_to_columns(basis_, first, second);
     }
 
     /// Multipliers per row, the active set and the objective 1/2 |L^T x|^2 + g^T x.
     void finish(QpStatus status) noexcept
     {
         result_.status = status;
-        for (Index j = 0; j < active_count_; ++j) {
-            result_.multipliers(active_rows_(j)) = active_multipliers_(j);
-            result_.active(j) = active_rows_(j);
+        for (Index j = 0; j < active_.size(); ++j) {
+            result_.multipliers(active_.row(j)) = active_.multiplier(j);
+            result_.active(j) = active_.row(j);
         }
-        result_.active_count = static_cast<int>(active_count_);
+        result_.active_count = static_cast<int>(active_.size());
         const auto& factor = llt_.matrixLLT();
         Scalar curvature = 0;
         for (Index i = 0; i < variables_; ++i) {
@@ -627,21 +462,15 @@ private:
     int iteration_limit_;
     Llt<Matrix> llt_;                  ///< H = L L^T (unrolled for fixed sizes)
     Vector gradient_;                  ///< g
-    ConstraintMatrix constraints_;     ///< C^T: row i's normal c_i is column i
+    ConstraintMatrix constraints_;     ///< C (set_constraints): C x for every row at once
+    NormalMatrix normals_;             ///< C^T: row i's normal c_i is column i
     RowVector bounds_;                 ///< d
     RowVector row_norms_;              ///< |c_i|
+    RowVector inverse_row_norms_;      ///< 1 / |c_i| (+inf for a zero row, never read)
     RowVector violations_;             ///< C x (scratch)
     RowFlags is_active_;               ///< 1 for rows in the active set
-    Matrix basis_;                     ///< J = L^-T Q
-    Matrix triangle_;                  ///< R (q x q upper triangle in use)
-    Scalar basis_norm_ = 0;            ///< |L^-1|_F = |J|_F
-    Vector step_;                      ///< J^T n_p
-    Vector direction_;                 ///< z
-    Vector dual_direction_;            ///< r (first q entries)
-    Vector active_multipliers_;        ///< u (first q entries)
-    ActiveList active_rows_;           ///< active rows in order of entry (first q entries)
     ActiveList warm_rows_;             ///< the previous active set, for solve_warm
-    Index active_count_ = 0;           ///< q
+    detail::QpActiveSet<Scalar, Variables> active_;  ///< J, R, the active rows and multipliers
     Result result_;
 };
 
