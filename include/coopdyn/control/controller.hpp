@@ -145,6 +145,13 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       joint_scratch(JointVector::Zero(model.joints()))
 {
     dynamics.form_projection_matrices = false;
+    // The fallback's rows [C, -|c|; 0, -1] (controller_fallback) depend on the model only.
+    const Index n = hessian.rows();
+    const Index m = bounds.size();
+    fallback_constraints.topLeftCorner(m, n) = constraints;
+    fallback_constraints.col(n).head(m) = -model.row_norms();
+    fallback_constraints(m, n) = Scalar(-1);
+    fallback_qp.set_constraints(fallback_constraints);
     if (model.qp_options().iteration_limit > 0) {
         qp.set_iteration_limit(model.qp_options().iteration_limit);
         fallback_qp.set_iteration_limit(model.qp_options().iteration_limit);
@@ -228,14 +235,10 @@ template <typename Model, typename Data> bool controller_fallback(const Model& m
     data.fallback_hessian(n, n) = model.qp_options().fallback_weight * data.hessian.diagonal().maxCoeff();
     data.fallback_gradient.head(n) = data.gradient;
     data.fallback_gradient(n) = Scalar(0);
-    data.fallback_constraints.topLeftCorner(m, n) = data.constraints;
-    data.fallback_constraints.col(n).head(m) = -model.row_norms();
-    data.fallback_constraints.row(m).setZero();
-    data.fallback_constraints(m, n) = Scalar(-1);
     data.fallback_bounds.head(m) = data.bounds;
     data.fallback_bounds(m) = Scalar(0);
-    const auto& result =
-        data.fallback_qp.solve(data.fallback_hessian, data.fallback_gradient, data.fallback_constraints, data.fallback_bounds);
+    // [C, -|c|; 0, -1] is constant: set once when the data was made (ControllerData's constructor).
+    const auto& result = data.fallback_qp.solve(data.fallback_hessian, data.fallback_gradient, data.fallback_bounds);
     data.qp_iterations += result.iterations;
     if (result.status != QpStatus::solved) {
         return false;
