@@ -99,7 +99,6 @@ struct ControllerData {
     Llt<JointMatrix> inertia_factor;                       ///< M = L L^T: the input check that M is SPD
     InternalMatrix hessian;
     InternalVector gradient;
-    Eigen::Matrix<Scalar, Rows, Internal> constraints;    ///< C, constant (ControllerModel::contact_qp_constraints)
     Eigen::Matrix<Scalar, Rows, 1> bounds;
     QpSolver<Scalar, Internal, Rows> qp;
     Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)> fallback_hessian;
@@ -132,7 +131,6 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       inertia_factor(model.joints()),
       hessian(InternalMatrix::Zero(6 * (model.arms() - 1), 6 * (model.arms() - 1))),
       gradient(InternalVector::Zero(6 * (model.arms() - 1))),
-      constraints(model.contact_qp_constraints()),
       bounds(Eigen::Matrix<Scalar, Rows, 1>::Zero(model.rows())),
       qp(model.contact_qp_constraints()),  // C is constant: set once, each tick solves with H, g, d
       fallback_hessian(Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)>::Zero(6 * model.arms() - 5,
@@ -148,7 +146,7 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
     // The fallback's rows [C, -|c|; 0, -1] (controller_fallback) depend on the model only.
     const Index n = hessian.rows();
     const Index m = bounds.size();
-    fallback_constraints.topLeftCorner(m, n) = constraints;
+    fallback_constraints.topLeftCorner(m, n) = model.contact_qp_constraints();
     fallback_constraints.col(n).head(m) = -model.row_norms();
     fallback_constraints(m, n) = Scalar(-1);
     fallback_qp.set_constraints(fallback_constraints);
@@ -289,7 +287,7 @@ template <typename Model, typename Data> void controller_contact_outputs(const M
                           data.contact_frame_wrenches.col(i));
         Scalar margin = std::numeric_limits<Scalar>::infinity();
         for (Index k = model.row_offset(i); k < model.row_offset(i) + model.row_count(i); ++k) {
-            const Scalar slack = data.bounds(k) - data.constraints.row(k).dot(data.squeeze);
+            const Scalar slack = data.bounds(k) - model.contact_qp_constraints().row(k).dot(data.squeeze);
             margin = std::min(margin, slack / model.row_norms()(k));
         }
         data.friction_margins(i) = margin;
