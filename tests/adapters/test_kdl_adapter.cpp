@@ -281,7 +281,7 @@ TEST(KdlAdapter, HeterogeneousPairOfChains)
         KDL::ChainDynParam dynamics(chain, pair_bases()[i].M.Inverse(KDL::Vector(0.0, 0.0, -9.81)));
         KDL::JntArray kq(chain.getNrOfJoints()), kqdot(chain.getNrOfJoints()), coriolis(chain.getNrOfJoints()),
             gravity(chain.getNrOfJoints());
-        KDL::JntSpaceInertiaMatrix mass(chain.getNrOfJoints());
+        KDL::JntSpaceInertiaMatrix mass(static_cast<int>(chain.getNrOfJoints()));
         kq.data = q.segment(offset, n);
         kqdot.data = qdot.segment(offset, n);
         dynamics.JntToMass(kq, mass);
