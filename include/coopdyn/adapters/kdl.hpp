@@ -12,11 +12,14 @@
 /// - M is the joint-space inertia, h = C(q, qdot) qdot + g(q).
 ///
 /// Who computes what, and why:
-/// - M: a composite-rigid-body algorithm over the tree, written here on KDL's spatial algebra, in
-///   world coordinates (M(j, k) = S_j . (Ic_k S_k) for j an ancestor of k). KDL 1.5 has a joint-space
-///   inertia solver for chains only (ChainDynParam), which cannot hold a joint shared by two arms;
-///   Q inverse-dynamics calls with unit accelerations would cost Q times an RNEA per tick.
-/// - h: KDL's TreeIdSolver_RNE at qdd = 0 (one call).
+/// - M and h: a composite-rigid-body algorithm and a recursive Newton-Euler pass at qdd = 0 over the
+///   tree, written here on KDL's spatial algebra (Frame, Twist, Wrench, RigidBodyInertia) in world
+///   coordinates, on the tree flattened once at construction. KDL 1.5 has a joint-space inertia
+///   solver for chains only (ChainDynParam), which cannot hold a joint shared by two arms; M from
+///   Q calls of its tree RNEA (TreeIdSolver_RNE) with unit accelerations would cost 116 us for
+///   Q = 13, and that solver looks every segment up by name in std::maps (8 us per call against
+///   about 2 us here; benchmarks/adapters/bench_kdl_adapter.cpp). KDL's TreeIdSolver_RNE is the
+///   tests' reference for both.
 /// - J, Jdot qdot: KDL's ChainJntToJacSolver and ChainJntToJacDotSolver (hybrid representation:
 ///   base-frame axes, reference point at the tip, whose linear part is the classical acceleration
 ///   of the tip's origin), one per arm on the chain from the root to its tip, scattered into the
@@ -39,7 +42,6 @@
 #include <kdl/jntarrayvel.hpp>
 #include <kdl/rigidbodyinertia.hpp>
 #include <kdl/tree.hpp>
-#include <kdl/treeidsolver_recursive_newton_euler.hpp>
 
 #include <Eigen/Geometry>
 
@@ -100,6 +102,24 @@ inline KDL::Twist joint_twist(const KDL::Joint& joint, const KDL::Frame& base) n
 }
 
 inline KDL::Vector to_kdl(const Eigen::Vector3d& v) { return KDL::Vector(v.x(), v.y(), v.z()); }
+
+// KDL's JntArray and Jacobian allocate their Eigen storage inside liborocos-kdl, aligned for the
+// instruction set the library was built for (Debian: 16 bytes). Code built here with wider
+// vectors (-march=native: AVX, 32 bytes) would read that storage with aligned loads and fault
+// (measured: a segmentation fault in the benchmark). Everything here reaches it through these
+// unaligned views.
+inline Eigen::Map<Eigen::VectorXd, Eigen::Unaligned> view(KDL::JntArray& a) noexcept
+{
+    return {a.data.data(), a.data.size()};
+}
+inline Eigen::Map<const Eigen::VectorXd, Eigen::Unaligned> view(const KDL::JntArray& a) noexcept
+{
+    return {a.data.data(), a.data.size()};
+}
+inline Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>, Eigen::Unaligned> view(const KDL::Jacobian& j) noexcept
+{
+    return {j.data.data(), 6, j.data.cols()};
+}
 
 }  // namespace kdl_detail
 
@@ -175,24 +195,28 @@ private:
         State(const KDL::Tree& tree_in, const Eigen::Vector3d& gravity)
             : tree(tree_in),
               flat(kdl_detail::flatten(tree)),
-              bias_solver(tree, kdl_detail::to_kdl(gravity)),
+              gravity_acceleration(-kdl_detail::to_kdl(gravity), KDL::Vector::Zero()),
               q(tree.getNrOfJoints()),
               qdot(tree.getNrOfJoints()),
-              zero(tree.getNrOfJoints()),
-              torque(tree.getNrOfJoints()),
               poses(flat.size()),
               twists(flat.size()),
+              velocities(flat.size()),
+              accelerations(flat.size()),
+              forces(flat.size()),
               composite(flat.size())
         {
         }
-        KDL::Tree tree;  // bias_solver holds a reference to it: State is never moved
+        KDL::Tree tree;
         std::vector<kdl_detail::FlatSegment> flat;
-        KDL::TreeIdSolver_RNE bias_solver;
-        KDL::JntArray q, qdot, zero, torque;
-        KDL::WrenchMap no_wrenches;
-        std::vector<KDL::Frame> poses;               // segment tip frames in {w}
-        std::vector<KDL::Twist> twists;              // joint unit twists in {w}, about the origin
-        std::vector<KDL::RigidBodyInertia> composite;  // subtree inertias in {w}, about the origin
+        KDL::Twist gravity_acceleration;  // the root's, -g: gravity enters as the base accelerating up
+        KDL::JntArray q, qdot;
+        // Per flat segment, all in {w} about the world origin:
+        std::vector<KDL::Frame> poses;                 // tip frames
+        std::vector<KDL::Twist> twists;                // joint unit twists S
+        std::vector<KDL::Twist> velocities;            // spatial velocities v
+        std::vector<KDL::Twist> accelerations;         // spatial accelerations at qdd = 0, with -g
+        std::vector<KDL::Wrench> forces;               // subtree forces of the RNEA
+        std::vector<KDL::RigidBodyInertia> composite;  // subtree inertias
         std::vector<std::string> joint_names;
         std::vector<std::unique_ptr<Arm>> arms;
     };
@@ -200,6 +224,8 @@ private:
     static KDL::Tree tree_from_chains(const std::vector<KDL::Chain>& chains, const std::vector<KDL::Frame>& bases);
     static std::vector<std::string> tip_names(const std::vector<KDL::Chain>& chains);
     void build(const std::vector<std::string>& tip_segments);
+    void forward_pass() const noexcept;
+    void update_bias(Input& input) const noexcept;
     void update_inertia(Input& input) const noexcept;
 
     std::unique_ptr<State> state_;
@@ -301,27 +327,65 @@ Eigen::Isometry3d KdlArms<Arms, Joints>::contact_pose(Index arm) const
     return pose;
 }
 
-/// Composite-rigid-body algorithm in {w}: poses and joint twists outward, subtree inertias inward,
-/// then M(j, k) = S_j . (Ic_k S_k) for every moving ancestor j of k (and k itself): the force that
-/// accelerating joint k alone needs, felt by each joint that carries it.
+/// Outward pass in {w}: each segment's pose, its joint's unit twist S, its spatial velocity
+/// v = v_parent + S qdot and acceleration at qdd = 0, a = a_parent + v x (S qdot) (S moves with the
+/// body carrying it: dS/dt = v_parent x S, and S x S = 0), starting from -g at the root; and its
+/// inertia in {w}, the start of both inward passes.
+template <int Arms, int Joints>
+void KdlArms<Arms, Joints>::forward_pass() const noexcept
+{
+    State& s = *state_;
+    for (std::size_t i = 0; i < s.flat.size(); ++i) {
+        const kdl_detail::FlatSegment& f = s.flat[i];
+        const bool root = f.parent < 0;
+        const auto p = static_cast<std::size_t>(root ? 0 : f.parent);
+        const KDL::Frame base = root ? KDL::Frame::Identity() : s.poses[p];
+        const double q = f.joint < 0 ? 0.0 : s.q(static_cast<unsigned int>(f.joint));
+        const double qdot = f.joint < 0 ? 0.0 : s.qdot(static_cast<unsigned int>(f.joint));
+        s.twists[i] = kdl_detail::joint_twist(f.segment.getJoint(), base);
+        s.poses[i] = base * f.segment.pose(q);
+        const KDL::Twist relative = s.twists[i] * qdot;
+        s.velocities[i] = (root ? KDL::Twist::Zero() : s.velocities[p]) + relative;
+        s.accelerations[i] = (root ? s.gravity_acceleration : s.accelerations[p]) + s.velocities[i] * relative;
+        s.composite[i] = s.poses[i] * f.segment.getInertia();
+    }
+}
+
+/// Inward RNEA pass: f = I a + v x* (I v) per body, summed over each subtree; h_k = S_k . f_k.
+template <int Arms, int Joints>
+void KdlArms<Arms, Joints>::update_bias(Input& input) const noexcept
+{
+    State& s = *state_;
+    for (std::size_t i = 0; i < s.flat.size(); ++i) {
+        const KDL::RigidBodyInertia& inertia = s.composite[i];
+        s.forces[i] = inertia * s.accelerations[i] + s.velocities[i] * (inertia * s.velocities[i]);
+    }
+    for (std::size_t i = s.flat.size(); i-- > 0;) {
+        const kdl_detail::FlatSegment& f = s.flat[i];
+        if (f.joint >= 0) {
+            input.bias(f.joint) = KDL::dot(s.twists[i], s.forces[i]);
+        }
+        if (f.parent >= 0) {
+            s.forces[static_cast<std::size_t>(f.parent)] += s.forces[i];
+        }
+    }
+}
+
+/// Composite-rigid-body algorithm: subtree inertias inward, then M(j, k) = S_j . (Ic_k S_k) for
+/// every moving ancestor j of k (and k itself): the force that accelerating joint k alone needs,
+/// felt by each joint that carries it. Runs after update_bias, which reads the body inertias.
 template <int Arms, int Joints>
 void KdlArms<Arms, Joints>::update_inertia(Input& input) const noexcept
 {
     State& s = *state_;
     const std::size_t n = s.flat.size();
-    for (std::size_t i = 0; i < n; ++i) {
-        const kdl_detail::FlatSegment& f = s.flat[i];
-        const KDL::Frame base = f.parent < 0 ? KDL::Frame::Identity() : s.poses[static_cast<std::size_t>(f.parent)];
-        s.twists[i] = kdl_detail::joint_twist(f.segment.getJoint(), base);
-        s.poses[i] = base * f.segment.pose(f.joint < 0 ? 0.0 : s.q(static_cast<unsigned int>(f.joint)));
-        s.composite[i] = s.poses[i] * f.segment.getInertia();
-    }
     for (std::size_t i = n; i-- > 0;) {
         if (s.flat[i].parent >= 0) {
             const auto p = static_cast<std::size_t>(s.flat[i].parent);
             s.composite[p] = s.composite[p] + s.composite[i];
         }
     }
+    input.inertia.setZero();
     for (std::size_t i = 0; i < n; ++i) {
         const int k = s.flat[i].joint;
         if (k < 0) {
@@ -343,13 +407,14 @@ bool KdlArms<Arms, Joints>::read(const Eigen::Ref<const Eigen::VectorXd>& q,
                                  const Eigen::Ref<const Eigen::VectorXd>& qdot, Input& input) noexcept
 {
     State& s = *state_;
-    s.q.data = q;
-    s.qdot.data = qdot;
+    kdl_detail::view(s.q) = q;
+    kdl_detail::view(s.qdot) = qdot;
     input.positions = q;
     input.velocities = qdot;
+    forward_pass();
+    update_bias(input);
     update_inertia(input);
-    bool ok = s.bias_solver.CartToJnt(s.q, s.qdot, s.zero, s.no_wrenches, s.torque) >= 0;
-    input.bias = s.torque.data;
+    bool ok = true;
     for (std::size_t i = 0; i < s.arms.size(); ++i) {
         Arm& arm = *s.arms[i];
         for (std::size_t j = 0; j < arm.columns.size(); ++j) {
@@ -362,7 +427,7 @@ bool KdlArms<Arms, Joints>::read(const Eigen::Ref<const Eigen::VectorXd>& q,
         input.jacobian.template middleRows<6>(row).setZero();
         for (std::size_t j = 0; j < arm.columns.size(); ++j) {
             input.jacobian.template middleRows<6>(row).col(arm.columns[j]) =
-                arm.jacobian.data.col(static_cast<Index>(j));
+                kdl_detail::view(arm.jacobian).col(static_cast<Index>(j));
         }
         for (int r = 0; r < 3; ++r) {
             input.jacobian_rate_qdot(row + r) = arm.rate.vel(r);
