@@ -125,11 +125,12 @@ std::vector<KDL::Frame> pair_bases()
     return {KDL::Frame(KDL::Vector(0.0, -0.4, 0.0)), KDL::Frame(KDL::Rotation::RotZ(M_PI), KDL::Vector(0.0, 0.4, 0.0))};
 }
 
-/// Both arms on one torso that turns about z (a joint both arms share, q[0]).
+/// Both arms on one torso that turns about z (a joint both arms share, q[0]), through a gear (KDL's
+/// joint scale 2 and offset 0.1 rad: the adapter must take both from KDL).
 KDL::Tree torso_tree()
 {
     KDL::Tree tree("world");
-    tree.addSegment(KDL::Segment("torso", KDL::Joint("torso_joint", KDL::Joint::RotZ), KDL::Frame(KDL::Vector(0, 0, 0.6)),
+    tree.addSegment(KDL::Segment("torso", KDL::Joint("torso_joint", KDL::Joint::RotZ, 2.0, 0.1), KDL::Frame(KDL::Vector(0, 0, 0.6)),
                                  KDL::RigidBodyInertia(15.0, KDL::Vector(0.02, 0.0, -0.2),
                                                        KDL::RotationalInertia(0.4, 0.3, 0.2, 0.01, 0.0, 0.0))),
                     "world");

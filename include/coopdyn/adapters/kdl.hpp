@@ -83,22 +83,14 @@ inline std::vector<FlatSegment> flatten(const KDL::Tree& tree)
     return flat;
 }
 
-/// Unit twist of a joint in {w}, reference point the world origin, from the pose of its segment's
-/// base frame (the joint's axis and origin are constant in that frame: the motion is about them).
+/// Twist per unit joint rate of a joint in {w}, reference point the world origin, from the pose of
+/// its segment's base frame. KDL's Joint::twist gives it in the base frame's axes about the joint's
+/// origin, with the joint's scale; the axis and origin are constant in that frame (the motion is
+/// about them), so only the change of axes and of reference point remain: v_O = v_p + p x w.
 inline KDL::Twist joint_twist(const KDL::Joint& joint, const KDL::Frame& base) noexcept
 {
-    const KDL::Vector axis = base.M * joint.JointAxis();
-    switch (joint.getType()) {
-    case KDL::Joint::TransAxis:
-    case KDL::Joint::TransX:
-    case KDL::Joint::TransY:
-    case KDL::Joint::TransZ:
-        return KDL::Twist(axis, KDL::Vector::Zero());
-    case KDL::Joint::None:
-        return KDL::Twist::Zero();
-    default:  // revolute: v(origin) = w x (origin - p) = p x axis
-        return KDL::Twist((base * joint.JointOrigin()) * axis, axis);
-    }
+    const KDL::Twist local = base.M * joint.twist(1.0);
+    return KDL::Twist(local.vel + (base * joint.JointOrigin()) * local.rot, local.rot);
 }
 
 inline KDL::Vector to_kdl(const Eigen::Vector3d& v) { return KDL::Vector(v.x(), v.y(), v.z()); }
