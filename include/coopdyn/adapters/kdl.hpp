@@ -151,8 +151,8 @@ public:
     const KDL::Tree& tree() const noexcept { return state_->tree; }
     /// The chain from the root to contact \p arm's segment (its joints are a subset of q's).
     const KDL::Chain& chain(Index arm) const { return state_->arms[static_cast<std::size_t>(arm)]->chain; }
-    /// Pose of contact \p arm in {w} at the last read() (its z axis is the palm's outward normal
-    /// for the shipped robots, docs/adapters.md "Shipped robots").
+    /// Pose of contact \p arm in {w} at the last read(), identity before one (its z axis is the
+    /// palm's outward normal for the shipped robots, docs/adapters.md "Shipped robots").
     Eigen::Isometry3d contact_pose(Index arm) const;
 
     /// Fills input.inertia, bias, jacobian, jacobian_rate_qdot, positions and velocities at (q,
@@ -216,9 +216,9 @@ private:
     static KDL::Tree tree_from_chains(const std::vector<KDL::Chain>& chains, const std::vector<KDL::Frame>& bases);
     static std::vector<std::string> tip_names(const std::vector<KDL::Chain>& chains);
     void build(const std::vector<std::string>& tip_segments);
-    void forward_pass() const noexcept;
-    void update_bias(Input& input) const noexcept;
-    void update_inertia(Input& input) const noexcept;
+    void forward_pass() noexcept;
+    void update_bias(Input& input) noexcept;
+    void update_inertia(Input& input) noexcept;
 
     std::unique_ptr<State> state_;
 };
@@ -324,7 +324,7 @@ Eigen::Isometry3d KdlArms<Arms, Joints>::contact_pose(Index arm) const
 /// body carrying it: dS/dt = v_parent x S, and S x S = 0), starting from -g at the root; and its
 /// inertia in {w}, the start of both inward passes.
 template <int Arms, int Joints>
-void KdlArms<Arms, Joints>::forward_pass() const noexcept
+void KdlArms<Arms, Joints>::forward_pass() noexcept
 {
     State& s = *state_;
     for (std::size_t i = 0; i < s.flat.size(); ++i) {
@@ -345,7 +345,7 @@ void KdlArms<Arms, Joints>::forward_pass() const noexcept
 
 /// Inward RNEA pass: f = I a + v x* (I v) per body, summed over each subtree; h_k = S_k . f_k.
 template <int Arms, int Joints>
-void KdlArms<Arms, Joints>::update_bias(Input& input) const noexcept
+void KdlArms<Arms, Joints>::update_bias(Input& input) noexcept
 {
     State& s = *state_;
     for (std::size_t i = 0; i < s.flat.size(); ++i) {
@@ -367,7 +367,7 @@ void KdlArms<Arms, Joints>::update_bias(Input& input) const noexcept
 /// every moving ancestor j of k (and k itself): the force that accelerating joint k alone needs,
 /// felt by each joint that carries it. Runs after update_bias, which reads the body inertias.
 template <int Arms, int Joints>
-void KdlArms<Arms, Joints>::update_inertia(Input& input) const noexcept
+void KdlArms<Arms, Joints>::update_inertia(Input& input) noexcept
 {
     State& s = *state_;
     const std::size_t n = s.flat.size();
