@@ -8,7 +8,8 @@
 //   M qdd = RNEA(q, 0, qdd) - RNEA(q, 0, 0) with KDL's tree RNEA; per arm, KDL's ChainDynParam;
 // - h (the adapter's world-frame RNEA): KDL's tree RNEA; KDL's ChainDynParam per arm; the energy balance
 //   qdot^T (h(q, qdot) - h(q, 0)) = qdot^T Mdot qdot / 2 and g = dV/dq by central differences;
-// - all of them against MuJoCo 2.2.2 loading the same URDF files, to 1e-9;
+// - M, h, J and the palm pose against MuJoCo 2.2.2 loading the same URDF files (to 1e-13 with
+//   MuJoCo's compiled inertials; see ShippedRobotsAgainstMujoco for why not the URDF's own);
 // and the refusals (InvalidModel) and the per-tick allocations of read().
 #include "../allocation_counter.hpp"
 
