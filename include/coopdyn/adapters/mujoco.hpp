@@ -61,10 +61,8 @@ public:
     ///   joint outside joint_names (M, h and J would miss that coupling), counts other than K, Q.
     MujocoArms(const mjModel* model, const std::vector<std::string>& joint_names,
                const std::vector<std::string>& contact_sites)
-        : selection_(model, joint_names, contact_sites)
+        : selection_(counted(model, joint_names, contact_sites), joint_names, contact_sites)
     {
-        require_count("joint_names", joint_names.size(), Joints, "Q");
-        require_count("contact_sites", contact_sites.size(), Arms, "K");
     }
 
     Index arms() const noexcept { return selection_.arms(); }
@@ -208,6 +206,15 @@ private:
         }
         mj_kinematics(model, data);
         mj_comPos(model, data);
+    }
+
+    /// `model`, once the counts match a fixed K and Q (checked before any name is looked up).
+    static const mjModel* counted(const mjModel* model, const std::vector<std::string>& joint_names,
+                                  const std::vector<std::string>& contact_sites)
+    {
+        require_count("joint_names", joint_names.size(), Joints, "Q");
+        require_count("contact_sites", contact_sites.size(), Arms, "K");
+        return model;
     }
 
     static void require_count(const char* parameter, std::size_t count, int fixed, const char* symbol)
