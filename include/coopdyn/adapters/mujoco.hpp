@@ -10,7 +10,7 @@
 ///     arms.read(model, data, input);      // allocation-free, leaves data unchanged
 ///     ... controller_tick(controller, controller_data, input); ... mj_step2(model, data);
 ///
-/// Needs MuJoCo (2.2.2 or later; CMake target coopdyn::mujoco).
+/// Needs MuJoCo (written and tested against 2.2.2; CMake target coopdyn::mujoco).
 #pragma once
 
 #include "coopdyn/adapters/mujoco_model.hpp"
