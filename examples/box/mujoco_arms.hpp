@@ -1,22 +1,26 @@
 // The dual-arm box's MJCF model (dual_arm_box.xml) loaded into MuJoCo, and what the controller
-// needs of the two arms each tick (box_model.hpp's ArmTerms), read from MuJoCo's own functions on
-// the arms alone: M (14 x 14), h (14), the palms' stacked Jacobian J (12 x 14, rows [v; w] per palm
-// in {w}) and Jdot qdot (12); and the grasp at the MJCF's keyframe "hold". docs/dual-arm-box.md,
-// "The plants".
+// needs of the two arms each tick (box_model.hpp's ArmTerms): M (14 x 14), h (14), the palms'
+// stacked Jacobian J (12 x 14, rows [v; w] per palm in {w}) and Jdot qdot (12), read by the
+// library's MuJoCo adapter (coopdyn/adapters/mujoco.hpp, docs/adapters.md) for the 14 arm joints
+// and the sites left_palm, right_palm; and the grasp at the MJCF's keyframe "hold".
+// docs/dual-arm-box.md, "The plants".
 //
 // The box's free joint is a separate kinematic tree: it couples to the arms neither in M nor in
-// the bias, so the arms' blocks of MuJoCo's full-model quantities are the arms' alone.
+// the bias (the adapter checks that the arms' joints and palms move with no other joint).
 //
-// This header belongs to the examples (it depends on MuJoCo), not to the library.
+// This header belongs to the examples (the MJCF's names and sizes), not to the library.
 #pragma once
 
 #include "box_model.hpp"
+
+#include <coopdyn/adapters/mujoco.hpp>
 
 #include <Eigen/Core>
 #include <mujoco/mujoco.h>
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -59,6 +63,13 @@ public:
         if (model_->jnt_qposadr[box_joint] != joints || model_->jnt_dofadr[box_joint] != joints) {
             throw std::runtime_error(path + ": the box's free joint must follow the 14 arm joints");
         }
+        std::vector<std::string> joint_names;
+        for (const char* side : {"left", "right"}) {
+            for (int joint = 1; joint <= joints / palms; ++joint) {
+                joint_names.push_back(std::string(side) + "_joint" + std::to_string(joint));
+            }
+        }
+        arms_.emplace(model_.get(), joint_names, std::vector<std::string>{"left_palm", "right_palm"});
     }
 
     mjModel* get() const noexcept { return model_.get(); }
@@ -67,6 +78,8 @@ public:
     int box_body() const noexcept { return box_body_; }
     int box_geom() const noexcept { return box_geom_; }
     int hold_key() const noexcept { return hold_key_; }
+    /// The adapter for the 14 arm joints (q's order: left_joint1..7, right_joint1..7) and the palms.
+    const coopdyn::MujocoArms<palms, joints>& arms() const noexcept { return *arms_; }
 
     /// A new mjData at the keyframe "hold" (arms in q_hold, box between the palms, at rest).
     DataPointer make_data_at_hold() const
@@ -96,6 +109,7 @@ private:
     int box_body_ = -1;
     int box_geom_ = -1;
     int hold_key_ = -1;
+    std::optional<coopdyn::MujocoArms<palms, joints>> arms_;  // built once the model is checked
 };
 
 /// Runs the position- and velocity-dependent stages MuJoCo needs for M, h, J and Jdot qdot on
@@ -111,48 +125,27 @@ inline void compute_arm_stages(const mjModel* model, mjData* data) noexcept
 }
 
 /// Reads M, h, J, Jdot qdot and the palm frames of the arms from `data`, whose stages are current
-/// (compute_arm_stages, or mj_step1 / mj_forward). Jdot qdot is the palms' acceleration at
-/// qdd = 0: with qacc zeroed, mj_rnePostConstraint then mj_objectAcceleration (MuJoCo 2.2.2; it
-/// reports [angular; linear] with the world's -g acceleration in the linear part, which is added
-/// back). It overwrites data->qacc and the RNE accelerations; mj_step2 recomputes both.
-/// `model` is `world`'s model or a copy of it (ids from `world`); `scratch` must hold nv * nv
-/// numbers (the full inertia) and 6 * nv (the Jacobians).
-inline void read_arm_terms(const DualArmBoxModel& world, const mjModel* model, mjData* data, ArmTerms& terms,
-                           mjtNum* scratch) noexcept
+/// (compute_arm_stages, or mj_step1 / mj_forward), with the library's adapter: allocation-free, and
+/// `data` is left as it is (Jdot qdot is the palms' acceleration at qdd = 0, docs/adapters.md).
+/// `model` is `world`'s model or a copy of it (ids from `world`).
+inline void read_arm_terms(const DualArmBoxModel& world, const mjModel* model, const mjData* data, ArmTerms& terms) noexcept
 {
-    const int nv = model->nv;
-    mj_fullM(model, scratch, data->qM);
-    for (int row = 0; row < joints; ++row) {
-        for (int col = 0; col < joints; ++col) {
-            terms.inertia(row, col) = scratch[row * nv + col];
-        }
-        terms.bias(row) = data->qfrc_bias[row];
-    }
-    mjtNum* linear = scratch;
-    mjtNum* angular = scratch + 3 * nv;
-    mju_zero(data->qacc, nv);
-    mj_rnePostConstraint(model, data);
+    const auto& arms = world.arms();
+    arms.read_inertia(model, data, terms.inertia);
+    arms.read_bias(data, terms.bias);
+    arms.read_jacobian(model, data, terms.jacobian);
+    arms.read_jacobian_rate_qdot(model, data, terms.jacobian_rate_qdot);
     for (int palm = 0; palm < palms; ++palm) {
-        const int site = world.palm_site(palm);
-        mj_jacSite(model, data, linear, angular, site);
-        for (int axis = 0; axis < 3; ++axis) {
-            for (int col = 0; col < joints; ++col) {
-                terms.jacobian(6 * palm + axis, col) = linear[axis * nv + col];
-                terms.jacobian(6 * palm + 3 + axis, col) = angular[axis * nv + col];
-            }
-        }
-        std::array<mjtNum, 6> acceleration{};
-        mj_objectAcceleration(model, data, mjOBJ_SITE, site, acceleration.data(), 0);
-        for (int axis = 0; axis < 3; ++axis) {
-            terms.jacobian_rate_qdot(6 * palm + axis) = acceleration[static_cast<std::size_t>(3 + axis)] + model->opt.gravity[axis];
-            terms.jacobian_rate_qdot(6 * palm + 3 + axis) = acceleration[static_cast<std::size_t>(axis)];
-        }
-        const mjtNum* position = data->site_xpos + 3 * site;
-        const mjtNum* rotation = data->site_xmat + 9 * site;  // row-major
-        terms.palm_position[static_cast<std::size_t>(palm)] = Eigen::Vector3d(position[0], position[1], position[2]);
-        terms.palm_rotation[static_cast<std::size_t>(palm)] =
-            Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(rotation);
+        terms.palm_position[static_cast<std::size_t>(palm)] = arms.contact_position(data, palm);
+        terms.palm_rotation[static_cast<std::size_t>(palm)] = arms.contact_rotation(data, palm);
     }
+}
+
+/// The same; `scratch` is unused (the adapter needs none) and stays for the callers that pass one.
+inline void read_arm_terms(const DualArmBoxModel& world, const mjModel* model, const mjData* data, ArmTerms& terms,
+                           const mjtNum* /*scratch*/) noexcept
+{
+    read_arm_terms(world, model, data, terms);
 }
 
 /// The grasp at the keyframe "hold": the box's pose, the palms' contact frames, the arms' q.
@@ -161,8 +154,7 @@ inline Grasp hold_grasp(const DualArmBoxModel& world)
     const DataPointer data = world.make_data_at_hold();
     compute_arm_stages(world.get(), data.get());
     ArmTerms terms;
-    std::vector<mjtNum> scratch(static_cast<std::size_t>(6 * world.get()->nv + world.get()->nv * world.get()->nv));
-    read_arm_terms(world, world.get(), data.get(), terms, scratch.data());
+    read_arm_terms(world, world.get(), data.get(), terms);
     Grasp grasp;
     const mjtNum* box = data->qpos + joints;
     grasp.box.position = Eigen::Vector3d(box[0], box[1], box[2]);

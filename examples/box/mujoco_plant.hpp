@@ -25,8 +25,7 @@ class MujocoPlant {
 public:
     MujocoPlant(const DualArmBoxModel& world, const PlantFriction& friction)
         : world_(world),
-          model_(mj_copyModel(nullptr, world.get())),
-          scratch_(static_cast<std::size_t>(6 * world.get()->nv + world.get()->nv * world.get()->nv))
+          model_(mj_copyModel(nullptr, world.get()))
     {
         if (!model_) {
             throw std::runtime_error("MuJoCo cannot copy the model");
@@ -64,7 +63,7 @@ public:
     void begin_tick() noexcept
     {
         mj_step1(model_.get(), data_.get());
-        read_arm_terms(world_, model_.get(), data_.get(), terms_, scratch_.data());
+        read_arm_terms(world_, model_.get(), data_.get(), terms_);
         const mjtNum* pose = data_->qpos + joints;
         box_position_ = Eigen::Vector3d(pose[0], pose[1], pose[2]);
         box_orientation_ = Eigen::Quaterniond(pose[3], pose[4], pose[5], pose[6]).normalized();
@@ -164,7 +163,6 @@ private:
     const DualArmBoxModel& world_;
     ModelPointer model_;
     DataPointer data_;
-    std::vector<mjtNum> scratch_;
     ArmTerms terms_;
     double box_mass_ = 0.0;
     Eigen::Vector3d box_position_ = Eigen::Vector3d::Zero();

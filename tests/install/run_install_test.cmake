@@ -7,7 +7,8 @@
 #
 # Inputs (-D): COOPDYN_BUILD_DIR, COOPDYN_CONSUMER_DIR, COOPDYN_WORK_DIR,
 # COOPDYN_CONFIG, COOPDYN_GENERATOR, COOPDYN_CXX_COMPILER, COOPDYN_Eigen3_DIR,
-# COOPDYN_VERSION.
+# COOPDYN_VERSION, COOPDYN_EXPECT_MUJOCO (the build has coopdyn::mujoco: the
+# consumer must get it too, and its adapter consumer is built and run).
 cmake_minimum_required(VERSION 3.22)
 
 foreach(var COOPDYN_BUILD_DIR COOPDYN_CONSUMER_DIR COOPDYN_WORK_DIR)
@@ -51,6 +52,9 @@ endif()
 if(COOPDYN_CONFIG)
   list(APPEND configure_args "-DCMAKE_BUILD_TYPE=${COOPDYN_CONFIG}")
 endif()
+if(COOPDYN_EXPECT_MUJOCO)
+  list(APPEND configure_args "-DCOOPDYN_EXPECT_MUJOCO=ON")
+endif()
 run_step("configuring the consumer" "${CMAKE_COMMAND}" ${configure_args})
 run_step("building the consumer"
   "${CMAKE_COMMAND}" --build "${consumer_build}" ${config_args})
@@ -67,6 +71,14 @@ if(NOT consumer_exe)
   message(FATAL_ERROR "install test: consumer executable not found in ${consumer_build}")
 endif()
 run_step("running the consumer" "${consumer_exe}")
+if(COOPDYN_EXPECT_MUJOCO)
+  get_filename_component(consumer_dir "${consumer_exe}" DIRECTORY)
+  file(GLOB mujoco_consumer "${consumer_dir}/mujoco_consumer" "${consumer_dir}/mujoco_consumer.exe")
+  if(NOT mujoco_consumer)
+    message(FATAL_ERROR "install test: mujoco_consumer (coopdyn::mujoco) was not built in ${consumer_dir}")
+  endif()
+  run_step("running the MuJoCo adapter's consumer" ${mujoco_consumer})
+endif()
 
 # 4. pkg-config (optional)
 find_program(PKG_CONFIG_EXECUTABLE NAMES pkg-config pkgconf)
