@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -59,6 +60,10 @@ struct Case {
     std::vector<std::string> joints;
     std::vector<std::string> contacts;
 };
+
+/// GoogleTest prints a parameter in the test's listing (ctest -N); without this it dumps the
+/// struct's bytes, pointers included, so the listing would change from run to run.
+void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
 
 std::vector<std::string> box_joints()
 {
