@@ -25,6 +25,7 @@
 #include "scenario.hpp"
 
 #include "../common/cli.hpp"
+#include "../common/files.hpp"
 #include "../common/csv_table.hpp"
 #include "../common/plotting.hpp"
 
