@@ -8,6 +8,7 @@
 #include "../common/csv_table.hpp"
 #include "../common/plotting.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -303,15 +304,18 @@ inline std::vector<std::string> log_columns(Eigen::Index arms)
 
 using example_common::CsvWriter;
 
-inline void write_log_csv(const std::filesystem::path& path, const ExperimentLog& log)
+/// Writes the log's steps 0, every, 2 every, ... (every >= 1; --log-every): the file is thinned, the
+/// log itself (and all that was computed from it) is not.
+inline void write_log_csv(const std::filesystem::path& path, const ExperimentLog& log, Eigen::Index every = 1)
 {
+    every = std::max<Eigen::Index>(every, 1);
     CsvWriter csv(path);
     const Eigen::Index arms = log.arm_wrenches.rows() / 18;
     for (const std::string& column : log_columns(arms)) {
         csv.text(column);
     }
     csv.end_row();
-    for (Eigen::Index n = 0; n < log.samples(); ++n) {
+    for (Eigen::Index n = 0; n < log.samples(); n += every) {
         csv.number(log.time(n));
         const auto block = [&](const auto& matrix) {
             for (Eigen::Index row = 0; row < matrix.rows(); ++row) {

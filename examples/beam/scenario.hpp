@@ -58,6 +58,11 @@ struct ExcitationDefaults {
     double torque = 1.0;  ///< N m: the same for torques
 };
 
+/// The excitation's amplitudes: the range of the scenario's "excitation.force" / "excitation.torque"
+/// and of --force / --torque (which also take 0: the scenario's), one definition for both.
+inline constexpr example_common::NumberRange excitation_force_range{1e-3, 1e3};   ///< N
+inline constexpr example_common::NumberRange excitation_torque_range{1e-3, 1e3};  ///< N m
+
 using Arm = coopdyn::Arm<coopdyn::ImpedanceEndEffector<double>>;
 
 /// A complete, validated set-up.
@@ -260,10 +265,10 @@ inline void read_excitation(const Reader& reader, const json& document, Scenario
         reader.expect_object(*excitation, "excitation");
         reader.only_keys(*excitation, "excitation", {"force", "torque"});
         if (const json* force = reader.optional(*excitation, "force")) {
-            scenario.excitation.force = reader.positive(*force, "excitation.force");
+            scenario.excitation.force = reader.in_range(*force, "excitation.force", excitation_force_range);
         }
         if (const json* torque = reader.optional(*excitation, "torque")) {
-            scenario.excitation.torque = reader.positive(*torque, "excitation.torque");
+            scenario.excitation.torque = reader.in_range(*torque, "excitation.torque", excitation_torque_range);
         }
     }
 }
@@ -377,8 +382,8 @@ inline Scenario parse_scenario(const std::string& text, const std::string& sourc
     return example_common::read_document(text, source, detail::read_scenario);
 }
 
-/// Reads and validates a scenario file. Throws ScenarioError (naming the file) when the file
-/// cannot be read or is invalid.
+/// Reads and validates a scenario file. Throws example_common::FileError when the file cannot be
+/// read, ScenarioError (naming the file) when it is invalid.
 inline Scenario load_scenario(const std::string& path)
 {
     return parse_scenario(example_common::read_text_file(path), path);

@@ -11,17 +11,21 @@
 // docs/two-arm-beam.md for the file format, the CSV columns and the plots.
 //
 // Every option is checked before anything runs (examples/common/cli.hpp): numbers must be finite
-// and in range, the output folder usable, the scenario valid (its name becomes a plain file-name
-// prefix), and options that depend on the scenario (--duration, --lowpass) consistent with it.
+// and in range, the output folder usable, the scenarios valid (a name becomes a plain file-name
+// prefix), and options that depend on a scenario (--duration, --lowpass) consistent with it.
+// Several --scenario files run one after the other; relative paths are taken from the working
+// directory.
 //
 // Exit codes (example_common, examples/common/cli.hpp): 0 success, 1 run-time failure
-// (identification, output files, gnuplot), 2 bad command line, 3 invalid scenario file.
+// (identification, gnuplot), 2 bad command line, 3 invalid scenario file, 4 a file that cannot be
+// read or written.
 
 #include "beam_experiment.hpp"
 #include "beam_report.hpp"
 #include "scenario.hpp"
 
 #include "../common/cli.hpp"
+#include "../common/files.hpp"
 #include "../common/csv_table.hpp"
 #include "../common/plotting.hpp"
 
@@ -42,7 +46,7 @@
 #include <vector>
 
 #ifndef COOPDYN_SCENARIO_DIR
-#define COOPDYN_SCENARIO_DIR "examples/beam/scenarios"
+#error "COOPDYN_SCENARIO_DIR: the shipped scenarios' folder, set by examples/beam/CMakeLists.txt"
 #endif
 
 namespace {
@@ -52,24 +56,21 @@ namespace fs = std::filesystem;
 
 using example_common::CsvTable;
 using example_common::exit_failure;
+using example_common::exit_file;
 using example_common::exit_scenario;
 using example_common::exit_usage;
+using example_common::FileError;
 
 /// The default --scenario as --help shows it (relative to the repository root).
 const char* const shipped_scenario = "examples/beam/scenarios/beam.json";
 
 /// The file of the default --scenario: the shipped beam in the source tree the program was built
-/// from (COOPDYN_SCENARIO_DIR), wherever the program is run from; if that tree is gone,
-/// examples/beam/scenarios/beam.json relative to the working directory (the repository root).
-std::string default_scenario_file()
-{
-    const std::string built = std::string(COOPDYN_SCENARIO_DIR) + "/beam.json";
-    std::error_code error;
-    return fs::exists(built, error) ? built : std::string(shipped_scenario);
-}
+/// from (COOPDYN_SCENARIO_DIR, compiled in), wherever the program is run from; never looked up
+/// relative to the working directory (if that tree is gone, it is a file that cannot be read).
+std::string default_scenario_file() { return std::string(COOPDYN_SCENARIO_DIR) + "/beam.json"; }
 
 struct CommandLine {
-    std::string scenario;  ///< empty: default_scenario_file()
+    std::vector<std::string> scenarios;  ///< empty before finish_command_line(): the default
     bool scenario_given = false;
     std::vector<std::string> experiments{"all"};
     std::string excitation = "multisine";
@@ -78,6 +79,7 @@ struct CommandLine {
     bool plots = true;
     bool list_scenarios = false;
     bool lowpass_given = false;
+    unsigned long long log_every = 1;  ///< the CSV logs hold every log_every-th step
     RunOptions run;
 };
 
@@ -116,14 +118,7 @@ template <typename ModelType>
 int run_experiments(const Scenario& scenario, const CommandLine& command, const std::vector<ExperimentSpec>& specs)
 {
     const ModelType model(scenario.object, scenario.arms, scenario.gravity);
-    const fs::path output = command.output;
-    std::error_code error;
-    fs::create_directories(output, error);
-    if (error) {
-        std::fprintf(stderr, "two_arm_beam: cannot create the output directory '%s': %s\n", command.output.c_str(),
-                     error.message().c_str());
-        return exit_failure;
-    }
+    const fs::path output = command.output;  // created and checked before anything ran
 
     std::printf("coopdyn cooperative manipulation: %s, scenario '%s' (%s)\n", setup_summary(scenario).c_str(),
                 scenario.name.c_str(), scenario.source.c_str());
@@ -154,7 +149,7 @@ int run_experiments(const Scenario& scenario, const CommandLine& command, const 
         // loaded, and confined_path() refuses any file name that could leave the folder.
         const std::string stem = scenario.name + "_" + spec.id;
         const fs::path csv = example_common::confined_path(output, stem + ".csv");
-        write_log_csv(csv, result.log);
+        write_log_csv(csv, result.log, static_cast<Eigen::Index>(command.log_every));
         written.push_back(csv);
         const fs::path script = example_common::confined_path(output, stem + ".gp");
         example_common::write_text_file(
@@ -167,9 +162,12 @@ int run_experiments(const Scenario& scenario, const CommandLine& command, const 
     write_summary_csv(summary, scenario, results, command.run);
     written.push_back(summary);
 
-    std::printf("\nsimulated %.4g s (warm-up included) in %.3g s wall clock (%.0fx real time, logging every step)\n",
-                simulated, wall,
-                simulated / wall);
+    std::printf("\nsimulated %.4g s (warm-up included) in %.3g s wall clock (%.0fx real time, %s)\n", simulated, wall,
+                simulated / wall,
+                command.log_every == 1 ? "logging every step"
+                                       : ("the CSV logs hold 1 step in " + std::to_string(command.log_every) +
+                                          ", the identification used every step")
+                                             .c_str());
     std::printf("logs (CSV, SI units, columns in docs/two-arm-beam.md):\n");
     for (const fs::path& path : written) {
         std::printf("  %s\n", path.string().c_str());
@@ -343,16 +341,19 @@ void add_experiment_options(CLI::App& app, CommandLine& command, ParsedFlags& fl
 {
     app.option_defaults()->always_capture_default();
     flags.scenario =
-        app.add_option("--scenario", command.scenario,
-                       "Scenario file (JSON), see examples/beam/scenarios/; default: the shipped beam scenario")
+        app.add_option("--scenario", command.scenarios,
+                       "Scenario files (JSON), run one after the other (repeat the option), see "
+                       "examples/beam/scenarios/; relative to the working directory; default: the shipped beam "
+                       "scenario")
             ->type_name("FILE")
             ->default_str(shipped_scenario);
     app.add_option("--experiment", command.experiments, "Experiments to run: x, rot_z, se3 or all")
         ->delimiter(',')
         ->check(CLI::IsMember({"x", "rot_z", "se3", "all"}))
         ->type_name("LIST");
-    app.add_option("--duration", command.run.duration, "Simulated seconds per experiment")
-        ->check(example_common::number_in_range(1.0, 3600.0))
+    app.add_option("--duration", command.run.duration,
+                   "Simulated seconds per experiment (at least 1 s: the multisine needs three lines in 0.1-5 Hz)")
+        ->check(example_common::number_in_range(example_common::experiment_duration_range))
         ->type_name("SECONDS");
     app.add_option("--excitation", command.excitation,
                    "Disturbance wrench: multisine (random-phase, 0.1-5 Hz) or push (human-like pushes)")
@@ -360,10 +361,10 @@ void add_experiment_options(CLI::App& app, CommandLine& command, ParsedFlags& fl
         ->type_name("KIND");
     app.add_option("--force", command.run.force,
                    "Force amplitude per axis [N]: RMS of the multisine, peak of a push (0: the scenario's)")
-        ->check(example_common::non_negative_number())
+        ->check(example_common::zero_or_in_range(excitation_force_range))
         ->type_name("NEWTONS");
     app.add_option("--torque", command.run.torque, "Torque amplitude per axis [N m] (0: the scenario's)")
-        ->check(example_common::non_negative_number())
+        ->check(example_common::zero_or_in_range(excitation_torque_range))
         ->type_name("NEWTON_METRES");
     app.add_option("--seed", command.run.seed, "Seed of the excitation phases/pushes and of the sensor noise")
         ->check(example_common::decimal_unsigned());
@@ -395,9 +396,15 @@ void add_output_options(CLI::App& app, CommandLine& command, ParsedFlags& flags)
         "1 / (2 time step): 500 Hz at 1 kHz")
         ->check(example_common::non_negative_number())
         ->type_name("HZ");
-    app.add_option("--output", command.output, "Directory for the CSV logs and plots (created if missing)")
+    app.add_option("--output", command.output,
+                   "Directory for the CSV logs and plots (created if missing; relative to the working directory)")
         ->check(example_common::output_folder())
         ->type_name("DIR");
+    app.add_option("--log-every", command.log_every,
+                   "Write every N-th step to the CSV logs (and so to the plots); the identification and the "
+                   "tables still use every step")
+        ->check(example_common::decimal_positive())
+        ->type_name("N");
     app.add_flag("--no-plots", flags.no_plots, "Do not run gnuplot (the scripts are still written)");
     app.add_flag("--quiet", flags.quiet, "No progress line");
     app.add_option("--identify-log", command.identify_log,
@@ -418,7 +425,7 @@ void finish_command_line(const ParsedFlags& flags, CommandLine& command)
     command.run.progress = !flags.quiet;
     command.scenario_given = flags.scenario->count() > 0;
     if (!command.scenario_given) {
-        command.scenario = default_scenario_file();
+        command.scenarios = {default_scenario_file()};
     }
     command.lowpass_given = flags.lowpass->count() > 0;
     command.run.excitation = command.excitation == "push" ? ExcitationKind::push : ExcitationKind::multisine;
@@ -440,31 +447,60 @@ std::vector<ExperimentSpec> selected_experiments(const CommandLine& command)
     return specs;
 }
 
-/// The parsed command: lists the scenarios, identifies a log or runs the experiments.
-int run_command(const CommandLine& command)
+/// The selected experiments on one scenario, on a Model with N arms fixed at compile time (2, 3)
+/// or not.
+int run_scenario(const Scenario& scenario, const CommandLine& command, const std::vector<ExperimentSpec>& specs)
 {
-    if (command.list_scenarios) {
-        return list_scenarios();
-    }
-    Scenario scenario;
-    try {
-        scenario = load_scenario(command.scenario);
-    } catch (const ScenarioError& error) {
-        std::fprintf(stderr, "two_arm_beam: invalid scenario: %s\n", error.what());
-        return exit_scenario;
-    }
-    if (!command.identify_log.empty()) {
-        return identify_log(command, command.scenario_given ? &scenario : nullptr);
-    }
-    if (!options_fit_scenario(command, scenario)) {
-        return exit_usage;
-    }
-    const std::vector<ExperimentSpec> specs = selected_experiments(command);
     switch (scenario.arm_count()) {
     case 2: return run_experiments<coopdyn::ImpedanceModel<2>>(scenario, command, specs);
     case 3: return run_experiments<coopdyn::ImpedanceModel<3>>(scenario, command, specs);
     default: return run_experiments<coopdyn::ImpedanceModelX>(scenario, command, specs);
     }
+}
+
+/// The parsed command: lists the scenarios, identifies a log or runs the experiments of each
+/// scenario. Every scenario is read and checked against the options before the first one runs.
+int run_command(const CommandLine& command)
+{
+    if (command.list_scenarios) {
+        return list_scenarios();
+    }
+    if (!command.identify_log.empty() && command.scenarios.size() > 1) {
+        std::fprintf(stderr, "two_arm_beam: --identify-log compares with one scenario, got %zu --scenario files\n",
+                     command.scenarios.size());
+        return exit_usage;
+    }
+    std::vector<Scenario> scenarios;
+    for (const std::string& file : command.scenarios) {
+        scenarios.push_back(load_scenario(file));  // FileError, ScenarioError: main()
+        for (std::size_t k = 0; k + 1 < scenarios.size(); ++k) {
+            if (scenarios[k].name == scenarios.back().name) {
+                std::fprintf(stderr, "two_arm_beam: the scenarios %s and %s have the same name '%s' and would write the "
+                                     "same files\n",
+                             scenarios[k].source.c_str(), file.c_str(), scenarios.back().name.c_str());
+                return exit_usage;
+            }
+        }
+    }
+    if (!command.identify_log.empty()) {
+        return identify_log(command, command.scenario_given ? &scenarios.front() : nullptr);
+    }
+    for (const Scenario& scenario : scenarios) {
+        if (!options_fit_scenario(command, scenario)) {
+            return exit_usage;
+        }
+    }
+    example_common::prepare_output_folder(command.output);
+    const std::vector<ExperimentSpec> specs = selected_experiments(command);
+    int status = 0;
+    for (std::size_t k = 0; k < scenarios.size(); ++k) {
+        if (k > 0) {
+            std::printf("\n");
+        }
+        const int code = run_scenario(scenarios[k], command, specs);
+        status = status == 0 ? code : status;
+    }
+    return status;
 }
 
 }  // namespace
@@ -490,8 +526,14 @@ int main(int argc, char** argv)
     finish_command_line(flags, command);
     try {
         return run_command(command);
+    } catch (const FileError& error) {
+        std::fprintf(stderr, "two_arm_beam: %s\n", error.what());
+        return exit_file;
+    } catch (const ScenarioError& error) {
+        std::fprintf(stderr, "two_arm_beam: invalid scenario: %s\n", error.what());
+        return exit_scenario;
     } catch (const std::exception& error) {
-        std::fprintf(stderr, "\ntwo_arm_beam: %s\n", error.what());
+        std::fprintf(stderr, "two_arm_beam: %s\n", error.what());
         return exit_failure;
     }
 }

@@ -128,7 +128,9 @@ inline std::vector<std::string> box_log_columns()
     return columns;
 }
 
-inline void write_box_log(const std::filesystem::path& path, const ExperimentRun& run)
+/// Writes every `every`-th tick of the run (--log-every; ticks 0, every, 2 every, ...): the file is
+/// thinned, the run (and the summary computed from it) is not.
+inline void write_box_log(const std::filesystem::path& path, const ExperimentRun& run, std::size_t every = 1)
 {
     example_common::CsvWriter csv(path);
     for (const std::string& column : box_log_columns()) {
@@ -140,7 +142,8 @@ inline void write_box_log(const std::filesystem::path& path, const ExperimentRun
             csv.number(vector(k));
         }
     };
-    for (const TickLog& row : run.log) {
+    for (std::size_t tick = 0; tick < run.log.size(); tick += std::max<std::size_t>(every, 1)) {
+        const TickLog& row = run.log[tick];
         csv.number(row.time);
         numbers(row.box_position);
         numbers(row.desired_position);
@@ -167,6 +170,36 @@ inline void write_box_log(const std::filesystem::path& path, const ExperimentRun
         csv.end_row();
     }
     csv.close();
+}
+
+/// The box's height against the desired one and, since the controller does not compensate the
+/// box's weight (its mass is unknown to it), the height the impedance settles at: z_d - m g / K_z,
+/// the static sag under the scenario's box mass and the controller's translational stiffness.
+inline std::string box_height_plot(const BoxScenario& scenario, const std::string& csv_name)
+{
+    const auto column = [](const char* name) { return std::string("(column('") + name + "'))"; };
+    const double stiffness = scenario.controller.translational_stiffness;
+    // The offsets keep the desired and the sag line off the frame, the key off the lines.
+    std::string s = "set ylabel 'z [m]'\nset offsets 0, 0, graph 0.05, graph 0.05\nset key right center\n";
+    std::string sag_line;
+    if (stiffness > 0.0) {
+        const double sag = scenario.box_mass * 9.81 / stiffness;
+        char text[160];
+        std::snprintf(text, sizeof text, "weight not compensated: expected static sag m g / K_z = %.3g kg * 9.81 / %.4g "
+                      "N/m = %.1f mm", scenario.box_mass, stiffness, 1e3 * sag);
+        s += std::string("set title '") + text + "'\n";
+        char offset[64];
+        std::snprintf(offset, sizeof offset, "%.10g", sag);
+        sag_line = ", '' using " + column("time") + ":(" + column("z_d") + " - " + offset +
+                   ") with lines ls 5 dt 3 title 'desired - m g / K_z (expected sag)'";
+    } else {
+        s += "set title 'weight not compensated (K_z = 0: no stiffness to hold it)'\n";
+    }
+    s += "plot '" + csv_name + "' using " + column("time") + ":" + column("z") +
+         " with lines ls 1 title 'box height', '' using " + column("time") + ":" + column("z_d") +
+         " with lines ls 4 title 'desired'" + sag_line + "\n";
+    s += "unset title\nunset offsets\nset key top right\n";
+    return s;
 }
 
 /// The gnuplot script of one run: Fig. 6's expected (blue) and measured (red) contact-force norm
@@ -209,10 +242,7 @@ inline std::string box_plot_script(const BoxScenario& scenario, const std::strin
             s += "plot '" + csv_name + "' using " + column("time") + ":" + column("box_mass") +
                  " with lines ls 5 title 'box mass (unknown to the controller)'\n";
         } else {
-            s += "set ylabel 'z [m]'\n";
-            s += "plot '" + csv_name + "' using " + column("time") + ":" + column("z") +
-                 " with lines ls 1 title 'box height', '' using " + column("time") + ":" + column("z_d") +
-                 " with lines ls 4 title 'desired'\n";
+            s += box_height_plot(scenario, csv_name);
         }
     }
     s += "unset multiplot\n";

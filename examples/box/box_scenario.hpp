@@ -6,6 +6,8 @@
 
 #include "box_model.hpp"
 
+#include "../common/ranges.hpp"
+
 #include <Eigen/Core>
 
 #include <array>
@@ -26,6 +28,11 @@ inline const char* to_string(Experiment experiment) noexcept
     }
     return "unknown";
 }
+
+/// A friction coefficient's range, one definition for --friction, the scenario's
+/// controller.friction and plant_friction.sliding (a coefficient above 2 is no material pair a
+/// palm meets, and the MuJoCo contact is tuned for those below).
+inline constexpr example_common::NumberRange friction_range{0.01, 2.0};
 
 /// What the controller knows and how it behaves (Lin et al.; docs/control.md).
 struct ControllerSettings {

@@ -52,7 +52,8 @@ inline ControllerSettings controller(const JsonReader& reader, const json& objec
     ControllerSettings c;
     const auto positive = [&](const json& v, const std::string& p) { return reader.positive(v, p); };
     const auto non_negative = [&](const json& v, const std::string& p) { return reader.non_negative(v, p); };
-    c.friction = optional_number(reader, object, path, "friction", c.friction, positive);
+    c.friction = optional_number(reader, object, path, "friction", c.friction,
+                                 [&](const json& v, const std::string& p) { return reader.in_range(v, p, friction_range); });
     c.torsional_friction = optional_number(reader, object, path, "torsional_friction", c.torsional_friction, non_negative);
     c.patch_half_size = optional_number(reader, object, path, "patch_half_size", c.patch_half_size, positive);
     c.minimum_normal_force =
@@ -181,12 +182,14 @@ inline BoxScenario box_scenario(const JsonReader& reader, const json& document)
         reader.string(*description, "description");
     }
     s.experiment = experiment(reader, reader.required(document, "", "experiment"), "experiment");
-    s.duration = reader.in_range(reader.required(document, "", "duration"), "duration", 0.001, 3600.0);
+    s.duration = reader.in_range(reader.required(document, "", "duration"), "duration",
+                                 example_common::experiment_duration_range);  // --duration's too
     s.box_mass = reader.in_range(reader.required(document, "", "box_mass"), "box_mass", 0.01, 100.0);
     const json& friction = reader.required(document, "", "plant_friction");
     reader.expect_object(friction, "plant_friction");
     reader.only_keys(friction, "plant_friction", {"sliding", "torsional"});
-    s.plant_friction.sliding = reader.positive(reader.required(friction, "plant_friction", "sliding"), "plant_friction.sliding");
+    s.plant_friction.sliding =
+        reader.in_range(reader.required(friction, "plant_friction", "sliding"), "plant_friction.sliding", friction_range);
     s.plant_friction.torsional =
         reader.non_negative(reader.required(friction, "plant_friction", "torsional"), "plant_friction.torsional");
     if (const json* settings = reader.optional(document, "controller")) {
@@ -233,7 +236,8 @@ inline BoxScenario parse_box_scenario(const std::string& text, const std::string
     return example_common::read_document(text, source, detail::box_scenario);
 }
 
-/// Reads and parses a box scenario file. Throws ScenarioError naming the file.
+/// Reads and parses a box scenario file. Throws example_common::FileError when it cannot be read,
+/// ScenarioError naming the file when it is invalid.
 inline BoxScenario load_box_scenario(const std::string& path)
 {
     return parse_box_scenario(example_common::read_text_file(path), path);

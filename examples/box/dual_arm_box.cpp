@@ -3,6 +3,11 @@
 // person pushes it down, loads it with masses or grabs it on a circular path; on the MuJoCo plant
 // (friction only holds the box) or the exact rigid-grasp plant. Prints a table next to the paper's
 // numbers and writes CSV logs, gnuplot scripts and PNG plots. docs/dual-arm-box.md.
+//
+// Relative paths (--scenario, --output) are taken from the working directory; the shipped MJCF and
+// scenarios through the path compiled in (COOPDYN_BOX_DIR). Exit codes (examples/common/cli.hpp):
+// 0 success, 1 run-time failure (the box dropped, gnuplot), 2 bad command line, 3 invalid
+// scenario file, 4 a file that cannot be read or written.
 #include "box_report.hpp"
 #include "box_scenario_loader.hpp"
 #include "minimum_squeeze.hpp"
@@ -10,12 +15,15 @@
 #include "mujoco_rigid_plant.hpp"
 
 #include "../common/cli.hpp"
+#include "../common/files.hpp"
 #include "../common/output_names.hpp"
 #include "../common/plotting.hpp"
 #include "../common/progress.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -24,7 +32,7 @@
 #include <vector>
 
 #ifndef COOPDYN_BOX_DIR
-#define COOPDYN_BOX_DIR "examples/box"
+#error "COOPDYN_BOX_DIR: the shipped MJCF's and scenarios' folder, set by examples/box/CMakeLists.txt"
 #endif
 
 namespace {
@@ -32,20 +40,14 @@ namespace {
 using namespace box_example;
 namespace fs = std::filesystem;
 using example_common::exit_failure;
+using example_common::exit_file;
 using example_common::exit_scenario;
 using example_common::exit_usage;
+using example_common::FileError;
 
-/// The shipped files as --help shows them (relative to the repository root).
-const char* const shipped_dir = "examples/box";
-
-/// The shipped folder in the source tree the program was built from, wherever it is run from; if
-/// that tree is gone, examples/box relative to the working directory (the repository root).
-std::string box_dir()
-{
-    std::error_code error;
-    return fs::exists(std::string(COOPDYN_BOX_DIR) + "/dual_arm_box.xml", error) ? std::string(COOPDYN_BOX_DIR)
-                                                                                  : std::string(shipped_dir);
-}
+/// The shipped folder in the source tree the program was built from (compiled in), wherever it is
+/// run from; never looked up relative to the working directory.
+std::string box_dir() { return COOPDYN_BOX_DIR; }
 
 struct CommandLine {
     std::vector<std::string> experiments{"all"};
@@ -58,6 +60,7 @@ struct CommandLine {
     bool plots = true;
     bool progress = true;
     bool minimum_squeeze = true;  ///< measure it on the MuJoCo plant (minimum_squeeze.hpp)
+    std::size_t log_every = 1;    ///< the CSV logs hold every log_every-th tick
 };
 
 std::vector<std::string> scenario_files(const CommandLine& command)
@@ -87,7 +90,7 @@ BoxSummary run_one(Plant& plant, const BoxScenario& scenario, const std::string&
     progress.finish();
     const std::string stem = scenario.name + "_" + plant_name;
     const fs::path csv = example_common::confined_path(command.output, stem + ".csv");
-    write_box_log(csv, run);
+    write_box_log(csv, run, command.log_every);
     const fs::path script = example_common::confined_path(command.output, stem + ".gp");
     const fs::path image = example_common::confined_path(command.output, stem + ".png");
     example_common::write_text_file(
@@ -99,8 +102,7 @@ BoxSummary run_one(Plant& plant, const BoxScenario& scenario, const std::string&
 int run(const CommandLine& command, std::vector<BoxScenario> scenarios)
 {
     const DualArmBoxModel world(box_dir() + "/dual_arm_box.xml");
-    const Grasp grasp = hold_grasp(world);
-    fs::create_directories(command.output);
+    const Grasp grasp = hold_grasp(world);  // --output was created and checked by main()
     example_common::Progress progress(command.progress);
     std::vector<example_common::Plot> plots;
     std::vector<std::pair<BoxScenario, BoxSummary>> summaries;
@@ -141,7 +143,11 @@ int run(const CommandLine& command, std::vector<BoxScenario> scenarios)
                 "friction (N); needed N: |f_t| / mu_true;\n  holds N: the smallest squeeze that still holds the heaviest static "
                 "load in MuJoCo (measured); W/(2mu): its Coulomb estimate;\n  track: largest |x - x_d| (m) outside a "
                 "person's hold; RTF: real-time factor.\n");
-    std::printf("logs and plot scripts: %s\n", command.output.c_str());
+    std::printf("logs and plot scripts: %s%s\n", command.output.c_str(),
+                command.log_every == 1 ? ""
+                                       : (" (the CSV logs hold 1 tick in " + std::to_string(command.log_every) +
+                                          "; the table used every tick)")
+                                             .c_str());
     bool dropped = false;
     for (const auto& entry : summaries) {
         dropped = dropped || entry.second.dropped;
@@ -172,26 +178,34 @@ int main(int argc, char** argv)
         ->check(CLI::IsMember({"hold", "push", "add_mass", "circle", "all"}))
         ->type_name("LIST");
     app.add_option("--scenario", command.scenarios,
-                   "Scenario files (JSON) instead of the shipped ones (examples/box/scenarios/)")
+                   "Scenario files (JSON) instead of the shipped ones (examples/box/scenarios/), run one after the "
+                   "other (repeat the option); relative to the working directory")
         ->type_name("FILE");
     app.add_option("--plant", command.plant, "mujoco (friction contact), rigid (welded palms) or both")
         ->check(CLI::IsMember({"mujoco", "rigid", "both"}))
         ->type_name("PLANT");
-    app.add_option("--duration", command.duration, "Simulated seconds per experiment (default: the scenario's)")
-        ->check(example_common::number_in_range(0.01, 3600.0))
+    app.add_option("--duration", command.duration,
+                   "Simulated seconds per experiment (default: the scenario's; at least 1 s, the table's rest window "
+                   "is 0.8 s)")
+        ->check(example_common::number_in_range(example_common::experiment_duration_range))
         ->default_str("scenario")
         ->type_name("SECONDS");
     app.add_option("--friction", command.friction,
                    "The controller's friction coefficient (default: the scenario's, 0.2; the plant's is 0.5)")
-        ->check(example_common::number_in_range(0.01, 2.0))
+        ->check(example_common::number_in_range(friction_range))  // the scenario's range too
         ->default_str("scenario")
         ->type_name("MU");
     app.add_option("--seed", command.seed, "Seed of the person's trembling hand")
         ->check(example_common::decimal_unsigned())
         ->type_name("N");
-    app.add_option("--output", command.output, "Directory for the CSV logs and plots (created if missing)")
+    app.add_option("--output", command.output,
+                   "Directory for the CSV logs and plots (created if missing; relative to the working directory)")
         ->check(example_common::output_folder())
         ->type_name("DIR");
+    app.add_option("--log-every", command.log_every,
+                   "Write every N-th tick to the CSV logs (and so to the plots); the table still uses every tick")
+        ->check(example_common::decimal_positive())
+        ->type_name("N");
     bool no_plots = false;
     app.add_flag("--no-plots", no_plots, "Do not run gnuplot (the scripts are still written)");
     bool quiet = false;
@@ -214,15 +228,25 @@ int main(int argc, char** argv)
     try {
         for (const std::string& file : scenario_files(command)) {
             scenarios.push_back(load_box_scenario(file));
+            for (std::size_t k = 0; k + 1 < scenarios.size(); ++k) {
+                if (scenarios[k].name == scenarios.back().name) {
+                    std::fprintf(stderr, "dual_arm_box: the scenarios %s and %s have the same name '%s' and would "
+                                         "write the same files\n",
+                                 scenarios[k].source.c_str(), file.c_str(), scenarios.back().name.c_str());
+                    return exit_usage;
+                }
+            }
         }
+        example_common::prepare_output_folder(command.output);
+        return run(command, std::move(scenarios));
+    } catch (const FileError& error) {
+        std::fprintf(stderr, "dual_arm_box: %s\n", error.what());
+        return exit_file;
     } catch (const ScenarioError& error) {
         std::fprintf(stderr, "dual_arm_box: invalid scenario: %s\n", error.what());
         return exit_scenario;
-    }
-    try {
-        return run(command, std::move(scenarios));
     } catch (const std::exception& error) {
-        std::fprintf(stderr, "\ndual_arm_box: %s\n", error.what());
+        std::fprintf(stderr, "dual_arm_box: %s\n", error.what());
         return exit_failure;
     }
 }

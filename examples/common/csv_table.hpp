@@ -3,6 +3,8 @@
 // CsvWriter writes them (numbers with 10 significant digits, NaN as "nan").
 #pragma once
 
+#include "files.hpp"
+
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -21,13 +23,16 @@ namespace example_common {
 /// Columns of a CSV file by header name. Cells are kept as text; number() parses them.
 class CsvTable {
 public:
-    /// Reads `path`. Throws std::runtime_error (naming the file and the line) when the file cannot
-    /// be read, is empty, or a row has a different number of cells than the header.
+    /// Reads `path`. Throws FileError ("cannot read <path>: <reason>") when the file cannot be
+    /// read, std::runtime_error (naming the file and the line) when it is empty or a row has a
+    /// different number of cells than the header.
     explicit CsvTable(const std::string& path) : path_(path)
     {
+        check_readable(path);
+        errno = 0;
         std::ifstream file(path, std::ios::binary);
         if (!file) {
-            throw std::runtime_error(path + ": cannot open the file for reading");
+            throw FileError(FileError::Access::read, path, errno_reason(errno));
         }
         std::string line;
         std::size_t line_number = 0;
@@ -124,14 +129,16 @@ private:
     std::vector<std::vector<std::string>> rows_;
 };
 
-/// Writes a CSV file row by row. Throws std::runtime_error (naming the file) when it cannot be
-/// opened or written.
+/// Writes a CSV file row by row. Throws FileError ("cannot write <path>: <reason>") when it cannot
+/// be opened or written.
 class CsvWriter {
 public:
-    explicit CsvWriter(const std::filesystem::path& path) : path_(path), file_(path, std::ios::binary)
+    explicit CsvWriter(const std::filesystem::path& path) : path_(path)
     {
+        errno = 0;
+        file_.open(path, std::ios::binary);
         if (!file_) {
-            throw std::runtime_error("cannot open " + path.string() + " for writing");
+            throw FileError(FileError::Access::write, path.string(), errno_reason(errno));
         }
     }
     void text(const std::string& value)
@@ -168,9 +175,10 @@ public:
     }
     void close()
     {
+        errno = 0;
         file_.close();
         if (!file_) {
-            throw std::runtime_error("error writing " + path_.string());
+            throw FileError(FileError::Access::write, path_.string(), errno_reason(errno));
         }
     }
 

@@ -17,13 +17,16 @@
 // last.
 #pragma once
 
+#include "files.hpp"
 #include "output_names.hpp"
+#include "ranges.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include <nlohmann/json.hpp>
 
+#include <cerrno>
 #include <climits>
 #include <cmath>
 #include <cstddef>
@@ -175,21 +178,21 @@ inline json parse_json(const std::string& text, const std::string& source)
     }
 }
 
-/// The whole content of a file. Throws ScenarioError (naming the file) when it cannot be read.
+/// The whole content of a file. Throws FileError ("cannot read <path>: <reason>", files.hpp) when
+/// it cannot be read: a missing or unreadable file is no invalid scenario (exit_file, not
+/// exit_scenario).
 inline std::string read_text_file(const std::string& path)
 {
-    std::error_code error;
-    if (std::filesystem::is_directory(path, error)) {
-        throw ScenarioError(path, "", "is a directory, not a file");
-    }
+    check_readable(path);
+    errno = 0;
     std::ifstream file(path, std::ios::binary);
     if (!file) {
-        throw ScenarioError(path, "", "cannot open the file for reading");
+        throw FileError(FileError::Access::read, path, errno_reason(errno));
     }
     std::ostringstream text;
     text << file.rdbuf();
     if (file.bad()) {
-        throw ScenarioError(path, "", "read error");
+        throw FileError(FileError::Access::read, path, "read error");
     }
     return text.str();
 }
@@ -300,6 +303,13 @@ public:
                            format_number(result));
         }
         return result;
+    }
+
+    /// A finite number in `range` (examples/common/ranges.hpp: the range its command-line option
+    /// has too).
+    double in_range(const json& value, const std::string& path, const NumberRange& range) const
+    {
+        return in_range(value, path, range.low, range.high);
     }
 
     std::string string(const json& value, const std::string& path) const

@@ -3,7 +3,10 @@
 // plotted) belong to each program.
 #pragma once
 
+#include "files.hpp"
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -53,14 +56,18 @@ inline std::string shell_quote(const std::string& text)
     return result + "'";
 }
 
-/// Writes `text` to `path`; throws std::runtime_error naming the file on failure.
+/// Writes `text` to `path`; throws FileError ("cannot write <path>: <reason>") on failure.
 inline void write_text_file(const std::filesystem::path& path, const std::string& text)
 {
+    errno = 0;
     std::ofstream file(path, std::ios::binary);
+    if (!file) {
+        throw FileError(FileError::Access::write, path.string(), errno_reason(errno));
+    }
     file << text;
     file.close();
     if (!file) {
-        throw std::runtime_error("error writing " + path.string());
+        throw FileError(FileError::Access::write, path.string(), errno_reason(errno));
     }
 }
 

@@ -17,6 +17,10 @@ public:
         : enabled_(enabled && isatty(fileno(stderr)) != 0), start_(Clock::now()), last_(start_)
     {
     }
+    /// Erases a line still shown, e.g. when an error ends the run: its message starts a clean line.
+    ~Progress() { finish(); }
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
     void update(const std::string& label, double fraction)
     {
         if (!enabled_) {

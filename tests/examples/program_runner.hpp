@@ -57,4 +57,29 @@ inline ProgramRun run_program(const std::string& program, const fs::path& direct
 
 inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
+/// The whole output is `line` and a newline: one message, no empty line before or after it.
+inline bool is_one_line(const std::string& output, const std::string& line) { return output == line + "\n"; }
+
+/// `text` (e.g. a shipped scenario) with `from` (found once) replaced by `to`, written to `file`.
+inline bool write_edited(const std::string& text, const std::string& from, const std::string& to, const fs::path& file)
+{
+    std::string edited = text;
+    const auto at = edited.find(from);
+    if (at == std::string::npos) {
+        return false;
+    }
+    edited.replace(at, from.size(), to);
+    std::ofstream(file) << edited;
+    return true;
+}
+
+/// The content of a text file.
+inline std::string read_file(const fs::path& file)
+{
+    std::ifstream in(file);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
 }  // namespace example_tests

@@ -41,6 +41,42 @@ TEST(BoxScenarioLoader, ShippedScenariosLoad)
     }
 }
 
+// The ranges the command line applies to --duration and --friction hold for the scenario's fields
+// too (one definition each: experiment_duration_range, friction_range), and the message names the
+// field and the range.
+TEST(BoxScenarioLoader, ValuesOutOfTheCommandLinesRangeAreRefused)
+{
+    const std::string hold = example_common::read_text_file(std::string(COOPDYN_BOX_DIR) + "/scenarios/hold.json");
+    const auto refused = [&](const std::string& from, const std::string& to) -> std::string {
+        std::string text = hold;
+        const std::size_t at = text.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        try {
+            parse_box_scenario(text.replace(at, from.size(), to), "edited.json");
+        } catch (const ScenarioError& error) {
+            return error.what();
+        }
+        return "accepted";
+    };
+    EXPECT_EQ(refused("\"friction\": 0.2", "\"friction\": 100"),
+              "edited.json: controller.friction: must be between 0.01 and 2, got 100");
+    EXPECT_EQ(refused("\"sliding\": 0.5", "\"sliding\": 1e9"),
+              "edited.json: plant_friction.sliding: must be between 0.01 and 2, got 1e+09");
+    EXPECT_EQ(refused("\"duration\": 4.0", "\"duration\": 0.5"),
+              "edited.json: duration: must be between 1 and 3600, got 0.5");
+    EXPECT_EQ(friction_range.low, 0.01);
+    EXPECT_EQ(friction_range.high, 2.0);
+    EXPECT_EQ(example_common::experiment_duration_range.low, 1.0);
+    EXPECT_EQ(example_common::experiment_duration_range.high, 3600.0);
+    // At the limits they load.
+    std::string limits = hold;
+    limits.replace(limits.find("\"friction\": 0.2"), 15, "\"friction\": 2.0");
+    limits.replace(limits.find("\"duration\": 4.0"), 15, "\"duration\": 1.0");
+    const BoxScenario scenario = parse_box_scenario(limits, "limits.json");
+    EXPECT_EQ(scenario.controller.friction, 2.0);
+    EXPECT_EQ(scenario.duration, 1.0);
+}
+
 TEST(BoxExperiment, UnitRowsGiveTheLibrarysMargin)
 {
     // FrictionRows' margin (rows scaled to unit length once) against coopdyn::friction_margin

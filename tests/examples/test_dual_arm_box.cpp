@@ -265,6 +265,13 @@ TEST(DualArmBoxInput, MalformedScenariosFailWithFileJsonPathAndProblem)
         {"type.json", replaced("\"box_mass\": 0.7", "\"box_mass\": \"heavy\""), "type.json: box_mass: expected a number"},
         {"objective.json", replaced("\"moment_weight\": 10000.0", "\"torque_weight\": 0, \"squeeze_weight\": 0"),
          "objective.json: controller.squeeze_weight: must be positive when torque_weight is 0"},
+        // The ranges of --friction and --duration hold for the scenario's values too.
+        {"friction.json", replaced("\"friction\": 0.2", "\"friction\": 100"),
+         "dual_arm_box: invalid scenario: friction.json: controller.friction: must be between 0.01 and 2, got 100"},
+        {"plant.json", replaced("\"sliding\": 0.5", "\"sliding\": 1e9"),
+         "dual_arm_box: invalid scenario: plant.json: plant_friction.sliding: must be between 0.01 and 2, got 1e+09"},
+        {"short.json", replaced("\"duration\": 13.0", "\"duration\": 0.5"),
+         "dual_arm_box: invalid scenario: short.json: duration: must be between 1 and 3600, got 0.5"},
     };
     for (const Case& c : cases) {
         std::ofstream(directory / c.file) << c.text;
@@ -281,7 +288,8 @@ TEST(DualArmBoxInput, InvalidOptionsAreRefusedBeforeAnythingRuns)
     const fs::path directory = example_tests::fresh_directory(output_root, "options");
     for (const std::string options :
          {"--duration nan", "--duration -1", "--duration inf", "--friction nan", "--friction 0", "--friction 1e400",
-          "--plant foo", "--experiment juggle", "--seed -1", "--output ''", "--no-such-option"}) {
+          "--plant foo", "--experiment juggle", "--seed -1", "--output ''", "--no-such-option", "--duration 0.5",
+          "--friction 50", "--log-every 0", "--log-every 2.5"}) {
         const std::string output = contains(options, "--output") ? "" : " --output out";
         const ProgramRun result = example_tests::run_program(program, directory, options + output + " --no-plots");
         EXPECT_EQ(result.exit_code, 2) << options << ": " << result.output;
@@ -300,6 +308,72 @@ TEST(DualArmBoxInput, HelpNamesTheShippedFilesRelativeToTheRepository)
     for (const char* option : {"--plant", "--experiment", "--duration", "--friction", "--seed", "--output"}) {
         EXPECT_TRUE(contains(help.output, option)) << option;
     }
+}
+
+TEST(DualArmBoxInput, MissingOrUnwritableFilesAreExitCodeFour)
+{
+    const fs::path directory = example_tests::fresh_directory(output_root, "files");
+    const ProgramRun missing = example_tests::run_program(program, directory, "--scenario nope.json --no-plots --quiet");
+    EXPECT_EQ(missing.exit_code, 4) << missing.output;
+    EXPECT_TRUE(example_tests::is_one_line(missing.output, "dual_arm_box: cannot read nope.json: No such file or directory"))
+        << missing.output;
+    const ProgramRun output = example_tests::run_program(
+        program, directory, "--experiment hold --plant rigid --no-plots --quiet --output /proc/nope");
+    EXPECT_EQ(output.exit_code, 4) << output.output;
+    EXPECT_EQ(output.output.rfind("dual_arm_box: cannot write /proc/nope: ", 0), 0u) << output.output;
+    EXPECT_EQ(std::count(output.output.begin(), output.output.end(), '\n'), 1) << output.output;
+}
+
+// From a directory of the user's: relative --scenario and --output are that directory's, several
+// scenarios run one after the other, --log-every thins the CSV only (the table is from every
+// tick), and the hold plot shows the expected sag of the uncompensated weight.
+TEST(DualArmBoxInput, RelativePathsSeveralScenariosAndLogEvery)
+{
+    const fs::path directory = example_tests::fresh_directory(output_root, "relative_paths");
+    const fs::path cwd = directory / "a" / "b";
+    fs::create_directories(cwd);
+    fs::create_directories(directory / "scenarios");
+    const std::string hold = example_tests::read_file(box_dir + "/scenarios/hold.json");
+    ASSERT_TRUE(example_tests::write_edited(hold, "\"name\": \"hold\"", "\"name\": \"first\"",
+                                            directory / "scenarios" / "first.json"));
+    ASSERT_TRUE(example_tests::write_edited(hold, "\"name\": \"hold\"", "\"name\": \"second\"",
+                                            directory / "scenarios" / "second.json"));
+    const std::string common = " --plant rigid --duration 1 --no-plots --quiet --output ../out";
+    const ProgramRun run = example_tests::run_program(
+        program, cwd, "--scenario ../../scenarios/first.json --scenario ../../scenarios/second.json --log-every 10" + common);
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_TRUE(contains(run.output, "1 tick in 10")) << run.output;
+    for (const char* name : {"first", "second"}) {
+        const CsvTable table((directory / "a" / "out" / (std::string(name) + "_rigid.csv")).string());
+        ASSERT_EQ(table.rows(), 100u) << name;  // ticks 0, 10, ..., 990 of 1000
+        EXPECT_NEAR(table.number(1, "time") - table.number(0, "time"), 0.01, 1e-12) << name;
+    }
+    // The table is the same as without --log-every.
+    const ProgramRun full = example_tests::run_program(program, cwd, "--scenario ../../scenarios/first.json" + common);
+    ASSERT_EQ(full.exit_code, 0) << full.output;
+    const auto table_row = [](const std::string& output) {
+        const std::size_t at = output.find("\nfirst ");
+        return at == std::string::npos ? std::string() : output.substr(at, output.find('\n', at + 1) - at);
+    };
+    ASSERT_FALSE(table_row(full.output).empty()) << full.output;
+    const auto without_rtf = [](const std::string& row) {  // the last column, the real-time factor, varies
+        const std::string trimmed = row.substr(0, row.find_last_not_of(' ') + 1);
+        return trimmed.substr(0, trimmed.find_last_of(' '));
+    };
+    EXPECT_EQ(without_rtf(table_row(run.output)), without_rtf(table_row(full.output)));
+    EXPECT_EQ(CsvTable((directory / "a" / "out" / "first_rigid.csv").string()).rows(), 1000u);
+
+    // The hold plot: the expected sag m g / K_z = 0.7 * 9.81 / 100 = 68.7 mm, weight not compensated.
+    const std::string script = example_tests::read_file(directory / "a" / "out" / "first_rigid.gp");
+    EXPECT_TRUE(contains(script, "weight not compensated")) << script;
+    EXPECT_TRUE(contains(script, "= 68.7 mm")) << script;
+    EXPECT_TRUE(contains(script, "(column('z_d')) - 0.06867)")) << script;
+
+    // Defaults: the shipped scenario from anywhere, out/box/ in the working directory.
+    const ProgramRun defaults = example_tests::run_program(
+        program, cwd, "--experiment hold --plant rigid --duration 1 --no-plots --quiet");
+    ASSERT_EQ(defaults.exit_code, 0) << defaults.output;
+    EXPECT_TRUE(fs::exists(cwd / "out" / "box" / "hold_rigid.csv"));
 }
 
 }  // namespace

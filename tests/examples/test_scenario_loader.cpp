@@ -155,6 +155,24 @@ TEST(ScenarioLoader, InertiaAsFullMatrixEqualsDiagonalShorthand)
 // ---------------------------------------------------------------------------------------------
 // Malformed files: every kind of error names the field and the problem.
 
+// The excitation's amplitudes have the range of --force and --torque (one definition,
+// beam_example::excitation_force_range / excitation_torque_range), and the message names it.
+TEST(ScenarioLoader, ExcitationAmplitudesHaveTheCommandLinesRange)
+{
+    EXPECT_EQ(beam_example::excitation_force_range.low, 1e-3);
+    EXPECT_EQ(beam_example::excitation_force_range.high, 1e3);
+    expect_refused([](json& d) { d["excitation"]["force"] = 1e9; }, "excitation.force",
+                   "must be between 0.001 and 1000, got 1e+09");
+    expect_refused([](json& d) { d["excitation"]["torque"] = 0.0; }, "excitation.torque",
+                   "must be between 0.001 and 1000, got 0");
+    json document = beam_document();
+    document["excitation"]["force"] = 1000.0;  // the limit itself is accepted
+    document["excitation"]["torque"] = 1e-3;
+    const Scenario scenario = beam_example::parse_scenario(document.dump(), "limits.json");
+    EXPECT_DOUBLE_EQ(scenario.excitation.force, 1000.0);
+    EXPECT_DOUBLE_EQ(scenario.excitation.torque, 1e-3);
+}
+
 TEST(ScenarioLoader, MissingField)
 {
     expect_refused([](json& d) { d["arms"][0]["end_effector"].erase("mass"); }, "arms[0].end_effector.mass",
@@ -255,13 +273,20 @@ TEST(ScenarioLoader, SyntaxErrorAndMissingFile)
         EXPECT_NE(message.find("broken.json: (top level): not valid JSON: parse error at line 1"), std::string::npos)
             << message;
     }
+    // A file that cannot be read is no invalid scenario: a FileError (the programs' exit_file).
     try {
         beam_example::load_scenario(scenario_dir + "/no_such_file.json");
         ADD_FAILURE() << "loaded a file that does not exist";
-    } catch (const ScenarioError& error) {
-        EXPECT_NE(std::string(error.what()).find("no_such_file.json: (top level): cannot open the file"),
-                  std::string::npos)
-            << error.what();
+    } catch (const example_common::FileError& error) {
+        EXPECT_EQ(std::string(error.what()),
+                  "cannot read " + scenario_dir + "/no_such_file.json: No such file or directory");
+        EXPECT_EQ(error.access(), example_common::FileError::Access::read);
+    }
+    try {
+        beam_example::load_scenario(scenario_dir);
+        ADD_FAILURE() << "loaded a directory";
+    } catch (const example_common::FileError& error) {
+        EXPECT_EQ(std::string(error.what()), "cannot read " + scenario_dir + ": is a directory, not a file");
     }
     EXPECT_THROW(beam_example::parse_scenario("[1, 2, 3]", "array.json"), ScenarioError);
 }

@@ -14,6 +14,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -340,9 +341,11 @@ TEST(TwoArmBeam, ErrorsGiveMessagesAndExitCodes)
     const ProgramRun experiment = run_program(directory, "--experiment rot_q");
     EXPECT_EQ(experiment.exit_code, 2) << experiment.output;
 
+    // A file that cannot be read is exit code 4 (not an invalid scenario), one line.
     const ProgramRun missing = run_program(directory, "--scenario no_such.json");
-    EXPECT_EQ(missing.exit_code, 3) << missing.output;
-    EXPECT_TRUE(contains(missing.output, "no_such.json: (top level): cannot open the file")) << missing.output;
+    EXPECT_EQ(missing.exit_code, 4) << missing.output;
+    EXPECT_TRUE(example_tests::is_one_line(missing.output, "two_arm_beam: cannot read no_such.json: No such file or directory"))
+        << missing.output;
 
     // A malformed file: nothing is simulated, no output is written.
     std::string text;
@@ -449,12 +452,16 @@ TEST(TwoArmBeam, InvalidOptionsAreRefusedBeforeAnythingRuns)
     expect_refused_up_front("--duration nan" + rest, 2, "--duration: must be a finite number in [1, 3600], got nan");
     expect_refused_up_front("--duration inf" + rest, 2, "--duration: must be a finite number in [1, 3600], got inf");
     expect_refused_up_front("--duration 1e999" + rest, 2, "--duration: must be a finite number");
-    expect_refused_up_front("--force nan" + rest, 2, "--force: must be a non-negative finite number, got nan");
-    expect_refused_up_front("--torque=-inf" + rest, 2, "--torque: must be a non-negative finite number, got -inf");
+    expect_refused_up_front("--force nan" + rest, 2, "--force: must be a finite number, 0 or in [0.001, 1000], got nan");
+    expect_refused_up_front("--torque=-inf" + rest, 2, "--torque: must be a finite number, 0 or in [0.001, 1000], got -inf");
     expect_refused_up_front("--force-noise nan --noise" + rest, 2, "--force-noise: must be a non-negative finite number");
     expect_refused_up_front("--angle-noise nan" + rest, 2, "--angle-noise: must be a non-negative finite number");
     // Readable limits (CLI11 printed DBL_MAX with all its digits).
-    expect_refused_up_front("--force -1" + rest, 2, "--force: must be a non-negative finite number, got -1");
+    expect_refused_up_front("--force -1" + rest, 2, "--force: must be a finite number, 0 or in [0.001, 1000], got -1");
+    // The scenario's excitation.force has the same range (beam_example::excitation_force_range).
+    expect_refused_up_front("--force 1e9" + rest, 2, "--force: must be a finite number, 0 or in [0.001, 1000], got 1e9");
+    expect_refused_up_front("--log-every 0" + rest, 2, "--log-every: must be a positive decimal integer");
+    expect_refused_up_front("--log-every 1.5" + rest, 2, "--log-every: must be a positive decimal integer");
     expect_refused_up_front("--duration 0.5" + rest, 2, "--duration: must be a finite number in [1, 3600], got 0.5");
     expect_refused_up_front("--lowpass abc" + rest, 2, "--lowpass: must be a non-negative finite number, got abc");
     // The low-pass filters the 1 kHz log: above the 500 Hz Nyquist limit it is refused (whether
@@ -527,6 +534,138 @@ TEST(TwoArmBeam, ScenarioNumbersAndNamesAreCheckedBeforeAnythingRuns)
     ASSERT_EQ(dotted.exit_code, 0) << dotted.output;
     EXPECT_TRUE(fs::exists(directory / "out" / "beam.v2-test_x.csv"));
     EXPECT_TRUE(fs::exists(directory / "out" / "beam.v2-test_identification.csv"));
+}
+
+// Relative paths are the working directory's (scripts/beam runs the program from the caller's
+// directory too); the default scenario is found through the compiled-in path from anywhere, and
+// the default output folder out/ is the working directory's.
+TEST(TwoArmBeam, RelativePathsAreTakenFromTheWorkingDirectory)
+{
+    const fs::path directory = fresh_directory("relative_paths");
+    const fs::path cwd = directory / "a" / "b";
+    fs::create_directories(cwd);
+    fs::create_directories(directory / "scenarios");
+    ASSERT_TRUE(example_tests::write_edited(example_tests::read_file(scenario_dir + "/beam.json"), "\"name\": \"beam\"",
+                                            "\"name\": \"mine\"", directory / "scenarios" / "mine.json"));
+    const ProgramRun relative = example_tests::run_program(
+        program, cwd, "--scenario ../../scenarios/mine.json --experiment x --duration 1 --runs 1 --no-plots --quiet "
+                      "--output ../out");
+    ASSERT_EQ(relative.exit_code, 0) << relative.output;
+    EXPECT_TRUE(fs::exists(directory / "a" / "out" / "mine_x.csv"));
+    EXPECT_TRUE(fs::exists(directory / "a" / "out" / "mine_identification.csv"));
+
+    // --identify-log on a relative path, from the same directory.
+    const ProgramRun identified = example_tests::run_program(program, cwd, "--identify-log ../out/mine_x.csv");
+    ASSERT_EQ(identified.exit_code, 0) << identified.output;
+    EXPECT_TRUE(contains(identified.output, "identification of ../out/mine_x.csv: 1000 samples")) << identified.output;
+
+    // Defaults: the shipped scenario from anywhere, out/ in the working directory.
+    const ProgramRun defaults =
+        example_tests::run_program(program, cwd, "--experiment x --duration 1 --runs 1 --no-plots --quiet");
+    ASSERT_EQ(defaults.exit_code, 0) << defaults.output;
+    EXPECT_TRUE(contains(defaults.output, "scenario 'beam'")) << defaults.output;
+    EXPECT_TRUE(fs::exists(cwd / "out" / "beam_x.csv"));
+}
+
+// Several --scenario files run one after the other, each writing its own files; two with the same
+// name (same output files) are refused before anything runs.
+TEST(TwoArmBeam, SeveralScenariosRunOneAfterTheOther)
+{
+    const fs::path directory = fresh_directory("several");
+    const std::string both = "--scenario " + quote(scenario_dir + "/beam.json") + " --scenario " +
+                             quote(scenario_dir + "/plate_three_arms.json");
+    const ProgramRun run = run_program(directory, both + " --experiment x --duration 1 --runs 1 --no-plots --quiet --output out");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_TRUE(contains(run.output, "2 arms hold a 1.75 kg object, scenario 'beam'")) << run.output;
+    EXPECT_TRUE(contains(run.output, "3 arms hold a 4.58 kg object, scenario 'plate'")) << run.output;
+    EXPECT_EQ(CsvTable((directory / "out" / "beam_identification.csv").string()).rows(), 3u);
+    EXPECT_EQ(CsvTable((directory / "out" / "plate_identification.csv").string()).rows(), 3u);
+
+    const ProgramRun twice = run_program(directory, "--scenario " + quote(scenario_dir + "/beam.json") +
+                                                        " --scenario " + quote(scenario_dir + "/beam.json") +
+                                                        " --duration 1 --no-plots --quiet --output twice");
+    EXPECT_EQ(twice.exit_code, 2) << twice.output;
+    EXPECT_TRUE(contains(twice.output, "have the same name 'beam'")) << twice.output;
+    EXPECT_FALSE(fs::exists(directory / "twice"));
+
+    // A bad second scenario stops everything before the first one runs.
+    std::ofstream(directory / "broken.json") << "{";
+    const ProgramRun broken = run_program(directory, "--scenario " + quote(scenario_dir + "/beam.json") +
+                                                         " --scenario broken.json --duration 1 --no-plots --quiet --output broken");
+    EXPECT_EQ(broken.exit_code, 3) << broken.output;
+    EXPECT_FALSE(fs::exists(directory / "broken"));
+}
+
+// --log-every N thins the CSV logs only: every N-th step, while the identification (from every
+// step) is the same as without it.
+TEST(TwoArmBeam, LogEveryThinsTheCsvOnly)
+{
+    const fs::path directory = fresh_directory("log_every");
+    const std::string common = "--experiment x --duration 2 --runs 1 --no-plots --quiet";
+    const ProgramRun full = run_program(directory, common + " --output full");
+    ASSERT_EQ(full.exit_code, 0) << full.output;
+    const ProgramRun thinned = run_program(directory, common + " --log-every 7 --output thinned");
+    ASSERT_EQ(thinned.exit_code, 0) << thinned.output;
+    EXPECT_TRUE(contains(thinned.output, "the CSV logs hold 1 step in 7")) << thinned.output;
+
+    const CsvTable all((directory / "full" / "beam_x.csv").string());
+    const CsvTable some((directory / "thinned" / "beam_x.csv").string());
+    ASSERT_EQ(all.rows(), 2000u);
+    ASSERT_EQ(some.rows(), 286u);  // steps 0, 7, ..., 1995: ceil(2000 / 7)
+    EXPECT_EQ(some.header(), all.header());
+    for (std::size_t row = 0; row < some.rows(); ++row) {
+        EXPECT_EQ(some.text(row, "time"), all.text(7 * row, "time"));
+        EXPECT_EQ(some.text(row, "meas_disp_x"), all.text(7 * row, "meas_disp_x"));
+    }
+    const CsvTable summary_all((directory / "full" / "beam_identification.csv").string());
+    const CsvTable summary_some((directory / "thinned" / "beam_identification.csv").string());
+    ASSERT_EQ(summary_all.rows(), summary_some.rows());
+    for (std::size_t row = 0; row < summary_all.rows(); ++row) {
+        EXPECT_EQ(summary_some.text(row, "identified"), summary_all.text(row, "identified"));
+    }
+}
+
+// Files that cannot be read or written: exit code 4 and one line "two_arm_beam: cannot read|write
+// <path>: <reason>", nothing simulated.
+TEST(TwoArmBeam, MissingOrUnwritableFilesAreExitCodeFour)
+{
+    const fs::path directory = fresh_directory("files");
+    const ProgramRun scenario = run_program(directory, "--scenario nope.json --no-plots --quiet");
+    EXPECT_EQ(scenario.exit_code, 4) << scenario.output;
+    EXPECT_TRUE(example_tests::is_one_line(scenario.output, "two_arm_beam: cannot read nope.json: No such file or directory"))
+        << scenario.output;
+
+    const ProgramRun folder = run_program(directory, "--scenario . --no-plots --quiet");
+    EXPECT_EQ(folder.exit_code, 4) << folder.output;
+    EXPECT_TRUE(example_tests::is_one_line(folder.output, "two_arm_beam: cannot read .: is a directory, not a file"))
+        << folder.output;
+
+    const ProgramRun log = run_program(directory, "--identify-log nope.csv");
+    EXPECT_EQ(log.exit_code, 4) << log.output;
+    EXPECT_TRUE(example_tests::is_one_line(log.output, "two_arm_beam: cannot read nope.csv: No such file or directory"))
+        << log.output;
+
+    const auto start = std::chrono::steady_clock::now();
+    const ProgramRun output = run_program(directory, "--duration 20 --no-plots --quiet --output /proc/nope");
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0)
+        << "refused before anything runs";
+    EXPECT_EQ(output.exit_code, 4) << output.output;
+    EXPECT_EQ(output.output.rfind("two_arm_beam: cannot write /proc/nope: ", 0), 0u) << output.output;
+    EXPECT_EQ(std::count(output.output.begin(), output.output.end(), '\n'), 1) << output.output;
+}
+
+// A scenario value out of the range its option has is refused as an invalid scenario (exit 3),
+// naming the field and the range.
+TEST(TwoArmBeam, ScenarioValuesHaveTheOptionsRanges)
+{
+    const fs::path directory = fresh_directory("scenario_ranges");
+    write_edited_beam(directory, "strong.json", "\"force\": 5.0", "\"force\": 1e9");
+    const ProgramRun strong = run_program(directory, "--scenario strong.json --duration 1 --no-plots --quiet --output out");
+    EXPECT_EQ(strong.exit_code, 3) << strong.output;
+    EXPECT_TRUE(example_tests::is_one_line(
+        strong.output, "two_arm_beam: invalid scenario: strong.json: excitation.force: must be between 0.001 and 1000, got 1e+09"))
+        << strong.output;
+    EXPECT_FALSE(fs::exists(directory / "out"));
 }
 
 }  // namespace
