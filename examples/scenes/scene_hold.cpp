@@ -1,8 +1,10 @@
 // scene_hold: the hold experiment on one scene (docs/scenes.md), in MuJoCo, with a printed summary.
 //
-//     scene_hold examples/scenes/ur5e_panda.json [seconds]
+//     scene_hold examples/scenes/ur5e_panda.json [seconds] [mujoco|rigid]
 #include "scene_hold.hpp"
+#include "scene_rigid.hpp"
 
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -10,8 +12,8 @@
 
 int main(int argc, char** argv)
 {
-    if (argc < 2 || argc > 3) {
-        std::fprintf(stderr, "usage: scene_hold <scene.json> [seconds]\n");
+    if (argc < 2 || argc > 4 || (argc == 4 && std::string(argv[3]) != "mujoco" && std::string(argv[3]) != "rigid")) {
+        std::fprintf(stderr, "usage: scene_hold <scene.json> [seconds] [mujoco|rigid]\n");
         return 2;
     }
     try {
@@ -30,10 +32,19 @@ int main(int argc, char** argv)
         }
         std::printf("\n");
         scenes::HoldSettings settings;
-        if (argc == 3) {
+        if (argc >= 3) {
             settings.seconds = std::atof(argv[2]);
         }
-        const scenes::HoldResult hold = scenes::run_hold(world, settings);
+        const bool rigid = argc == 4 && std::string(argv[3]) == "rigid";
+        scenes::HoldResult hold;
+        if (rigid) {
+            scenes::RigidScenePlant plant(world);
+            hold = scenes::run_hold_on(world, plant, settings);
+            const std::array<double, 2> weld = plant.weld_error();
+            std::printf("rigid plant: weld error at the end %.3g m, %.3g rad\n", weld[0], weld[1]);
+        } else {
+            hold = scenes::run_hold(world, settings);
+        }
         std::printf("hold %.2f s (%ld ticks): %s, slip %.3g mm, object moved %.3g mm / %.3g mrad; not-ok ticks %ld, "
                     "fallback ticks %ld, max |tau| %.1f N m; real-time factor %.1f, controller tick %.1f us\n",
                     static_cast<double>(hold.ticks) * 1e-3, hold.ticks, hold.dropped ? "DROPPED" : "held",
