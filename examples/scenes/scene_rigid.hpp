@@ -1,0 +1,289 @@
+// The rigid-grasp plant of any scene (docs/scenes.md, "The rigid plant"): the scene's arms with each
+// palm welded to the object where it touches it at the start, the object with its true mass and
+// inertia (the MJCF's), solved exactly by coopdyn::JointSpaceGrasp (Gauss's principle through the
+// structured kernel, docs/dynamics.md "Arms in joint space") and integrated with RK4 at the
+// model's timestep. The dual-arm box's rigid plant (examples/box/rigid_plant.hpp) for any K and
+// arms of any joint counts; the arms' M, h, J, Jdot qdot come from MuJoCo through the adapter
+// (MujocoArms::read on a scratch mjData at each RK4 stage), not from an own recursion.
+//
+// Coordinates: the arms' q (Q), the object's centre of mass p and orientation (its body frame),
+// qdot, the centre's velocity v and the angular velocity w ({w}). Unconstrained dynamics
+// M(q) qdd = tau - h(q, qdot), m a = m g, I_w alpha = -w x I_w w; per palm the weld
+// J_i qdd_i + Jdot_i qdot_i = [a + alpha x r_i + w x (w x r_i); alpha] + beta_i, r_i = R_o c_i,
+// with Baumgarte's beta_i = -2 omega_s (velocity error) - omega_s^2 (pose error) against drift.
+//
+// Needs arms that share no joint, their joints contiguous in q and in the contacts' order (checked
+// at construction): JointSpaceGrasp works arm by arm. A step allocates (the RK4 stages' dynamic
+// vectors): it is the simulated world, not the controller, whose tick does not. Each step costs four
+// mj_forward calls (the real-time factor is 5-6 on the shipped scenes, MuJoCo's plant 10-25). This
+// header belongs to the examples.
+#pragma once
+
+#include "scene_world.hpp"
+
+#include <coopdyn/dynamics/joint_space_grasp.hpp>
+#include <coopdyn/spatial/quaternion.hpp>
+
+#include <array>
+#include <vector>
+
+namespace scenes {
+
+class RigidScenePlant {
+public:
+    using Index = Eigen::Index;
+    using Vector6 = coopdyn::Vector6<double>;
+    using RigidBodyState = coopdyn::RigidBodyState<double>;
+
+    /// Welds each palm to the object where the world's current state (after world.start()) has
+    /// them. `stabilisation_frequency` (rad/s): the Baumgarte terms, critically damped.
+    explicit RigidScenePlant(const SceneWorld& world, double stabilisation_frequency = 50.0)
+        : world_(world),
+          scratch_(mj_makeData(world.model())),
+          grasp_(arm_joint_counts(world)),
+          stiffness_(stabilisation_frequency * stabilisation_frequency),
+          damping_(2.0 * stabilisation_frequency),
+          input_(world.arms().arms(), world.arms().joints())
+    {
+        if (!scratch_) {
+            throw SceneError(world.scene().source + ": MuJoCo cannot allocate the rigid plant's mjData");
+        }
+        const mjModel* model = world.model();
+        const int body = world.object_body();
+        mass_ = model->body_mass[body];
+        const mjtNum* frame = model->body_iquat + 4 * body;  // principal axes in the body frame
+        const Eigen::Matrix3d axes = Eigen::Quaterniond(frame[0], frame[1], frame[2], frame[3]).normalized().toRotationMatrix();
+        inertia_ = axes * Eigen::Map<const Eigen::Vector3d>(model->body_inertia + 3 * body).asDiagonal() * axes.transpose();
+        gravity_ = Eigen::Map<const Eigen::Vector3d>(model->opt.gravity);
+        const Index joints = world.arms().joints();
+        const Index arms = world.arms().arms();
+        state_.resize(joints + 7);
+        velocity_.resize(joints + 6);
+        world.arms().read_positions(world.data(), state_.head(joints));
+        world.arms().read_velocities(world.data(), velocity_.head(joints));
+        const RigidBodyState object = coopdyn::mujoco_object_state(model, world.data(), body);
+        state_.segment<3>(joints) = object.pose.position;
+        state_.segment<4>(joints + 3) = object.pose.orientation.normalized().coeffs();
+        velocity_.tail<6>() = object.twist;
+        evaluate(state_, velocity_);
+        const Eigen::Matrix3d rotation = object.pose.orientation.toRotationMatrix();
+        for (Index i = 0; i < arms; ++i) {
+            const coopdyn::Pose<double> palm = world.arms().contact_pose(scratch_.get(), i);
+            weld_point_.push_back(rotation.transpose() * (palm.position - object.pose.position));
+            weld_rotation_.push_back((object.pose.orientation.conjugate() * palm.orientation).normalized());
+        }
+        offsets_.resize(3, arms);
+        stabilisation_.assign(static_cast<std::size_t>(arms), Vector6::Zero());
+        acceleration_ = Vector6::Zero();
+        stage_acceleration_.resize(joints + 6);
+        joint_acceleration_.resize(joints);
+        free_torque_.resize(joints);
+    }
+
+    double period() const noexcept { return world_.model()->opt.timestep; }
+
+    /// The controller's input at the current state: the arms' terms and the object's state and last
+    /// acceleration.
+    void begin_tick(coopdyn::ControllerInput<double>& input) noexcept
+    {
+        evaluate(state_, velocity_);
+        const Index joints = world_.arms().joints();
+        input.inertia = input_.inertia;
+        input.bias = input_.bias;
+        input.jacobian = input_.jacobian;
+        input.jacobian_rate_qdot = input_.jacobian_rate_qdot;
+        input.positions = state_.head(joints);
+        input.velocities = velocity_.head(joints);
+        input.object.pose.position = state_.segment<3>(joints);
+        input.object.pose.orientation = Eigen::Quaterniond(state_.segment<4>(joints + 3));
+        input.object.twist = velocity_.tail<6>();
+        input.object_acceleration = acceleration_;
+    }
+    coopdyn::Pose<double> contact_pose(Index i) const { return world_.arms().contact_pose(scratch_.get(), i); }
+
+    /// One RK4 step under tau (held over the step); the palms' wrenches are those at the step's
+    /// start (the state the controller saw).
+    void end_tick(const Eigen::VectorXd& tau)
+    {
+        const double dt = period();
+        const std::array<double, 4> fraction{0.0, 0.5, 0.5, 1.0};
+        std::array<Eigen::VectorXd, 4> position_rate;
+        std::array<Eigen::VectorXd, 4> velocity_rate;
+        Eigen::VectorXd position = state_;
+        Eigen::VectorXd velocity = velocity_;
+        for (std::size_t k = 0; k < 4; ++k) {
+            if (k > 0) {
+                advance(state_, velocity_, position_rate[k - 1], velocity_rate[k - 1], fraction[k] * dt, position, velocity);
+                evaluate(position, velocity);
+            }
+            solve(position, velocity, tau, /*keep=*/k == 0);
+            position_rate[k] = rate_of_position(position, velocity);
+            velocity_rate[k] = stage_acceleration_;
+        }
+        const Eigen::VectorXd mean_position_rate =
+            (position_rate[0] + 2.0 * position_rate[1] + 2.0 * position_rate[2] + position_rate[3]) / 6.0;
+        const Eigen::VectorXd mean_velocity_rate =
+            (velocity_rate[0] + 2.0 * velocity_rate[1] + 2.0 * velocity_rate[2] + velocity_rate[3]) / 6.0;
+        advance(state_, velocity_, mean_position_rate, mean_velocity_rate, dt, position, velocity);
+        state_ = position;
+        velocity_ = velocity;
+    }
+
+    /// Palm i's normal force on the object (N) at the last step's start: the weld's wrench along the
+    /// contact normal (negative: the weld pulls).
+    double normal_force(Index i) const noexcept { return normal_force_[static_cast<std::size_t>(i)]; }
+    int contact_points(Index) const noexcept { return 1; }
+    /// The weld's worst position (m) and rotation (rad) error at the current state.
+    std::array<double, 2> weld_error()
+    {
+        evaluate(state_, velocity_);
+        std::array<double, 2> worst{0.0, 0.0};
+        const Index joints = world_.arms().joints();
+        const Eigen::Quaterniond orientation(state_.segment<4>(joints + 3));
+        for (Index i = 0; i < world_.arms().arms(); ++i) {
+            const auto index = static_cast<std::size_t>(i);
+            const coopdyn::Pose<double> palm = contact_pose(i);
+            worst[0] = std::max(worst[0], (palm.position - state_.segment<3>(joints) - orientation * weld_point_[index]).norm());
+            worst[1] = std::max(worst[1], palm.orientation.angularDistance(orientation * weld_rotation_[index]));
+        }
+        return worst;
+    }
+
+private:
+    /// Each arm's joint count, checking that arm i's joints are the i-th contiguous block of q.
+    static std::vector<Index> arm_joint_counts(const SceneWorld& world)
+    {
+        const mjModel* model = world.model();
+        const Arms& arms = world.arms();
+        std::vector<Index> counts(static_cast<std::size_t>(arms.arms()), 0);
+        Index arm = 0;
+        for (Index j = 0; j < arms.joints(); ++j) {
+            const int root = model->body_rootid[model->jnt_bodyid[arms.joint_id(j)]];
+            while (arm < arms.arms() && model->body_rootid[arms.contact(arm).body] != root) {
+                ++arm;
+            }
+            if (arm == arms.arms()) {
+                throw SceneError(world.scene().source +
+                                 ": the rigid plant needs the joints arm by arm, in the contacts' order (joints[" +
+                                 std::to_string(j) + "])");
+            }
+            ++counts[static_cast<std::size_t>(arm)];
+        }
+        for (std::size_t i = 0; i < counts.size(); ++i) {
+            if (counts[i] == 0) {
+                throw SceneError(world.scene().source + ": the rigid plant finds no joint of contact " + std::to_string(i));
+            }
+        }
+        return counts;
+    }
+
+    /// The arms' terms at (position, velocity), into input_ (scratch_ holds the state after).
+    void evaluate(const Eigen::VectorXd& position, const Eigen::VectorXd& velocity) noexcept
+    {
+        const Arms& arms = world_.arms();
+        for (Index j = 0; j < arms.joints(); ++j) {
+            scratch_->qpos[arms.qpos_address(j)] = position(j);
+            scratch_->qvel[arms.dof_address(j)] = velocity(j);
+        }
+        mj_forward(world_.model(), scratch_.get());
+        arms.read(world_.model(), scratch_.get(), input_);
+    }
+
+    /// The weld at (position, velocity) with the terms in input_: stage_acceleration_ = [qdd; a;
+    /// alpha]; `keep`: also the object's acceleration and the palms' normal forces.
+    void solve(const Eigen::VectorXd& position, const Eigen::VectorXd& velocity, const Eigen::VectorXd& tau, bool keep)
+    {
+        const Arms& arms = world_.arms();
+        const Index joints = arms.joints();
+        const Eigen::Vector3d centre = position.segment<3>(joints);
+        const Eigen::Quaterniond orientation(position.segment<4>(joints + 3));
+        const Eigen::Matrix3d rotation = orientation.toRotationMatrix();
+        const Eigen::Vector3d v = velocity.segment<3>(joints);
+        const Eigen::Vector3d w = velocity.tail<3>();
+        free_torque_ = tau - input_.bias;
+        Index first = 0;
+        for (Index i = 0; i < arms.arms(); ++i) {
+            const auto index = static_cast<std::size_t>(i);
+            const Index n = grasp_.joints(i);
+            const Eigen::Vector3d r = rotation * weld_point_[index];
+            offsets_.col(i) = r;
+            const coopdyn::Pose<double> palm = arms.contact_pose(scratch_.get(), i);
+            const Vector6 twist = input_.jacobian.block(6 * i, first, 6, n) * velocity.segment(first, n);
+            Vector6 error;
+            error << palm.position - centre - r,
+                coopdyn::quaternion_log(Eigen::Quaterniond(palm.orientation * (orientation * weld_rotation_[index]).conjugate()));
+            Vector6 rate;
+            rate << twist.head<3>() - v - w.cross(r), twist.tail<3>() - w;
+            stabilisation_[index] = -damping_ * rate - stiffness_ * error;
+            if (!grasp_.set_arm(i, input_.inertia.block(first, first, n, n), input_.jacobian.block(6 * i, first, 6, n),
+                                free_torque_.segment(first, n), input_.jacobian_rate_qdot.segment<6>(6 * i),
+                                stabilisation_[index])) {
+                throw SceneError("rigid plant: arm " + std::to_string(i) + "'s M is not positive definite");
+            }
+            first += n;
+        }
+        const Eigen::Matrix3d inertia_world = rotation * inertia_ * rotation.transpose();
+        Vector6 free_wrench;
+        free_wrench << mass_ * gravity_, -w.cross(inertia_world * w);
+        if (!grasp_.solve(coopdyn::CentralInertia<double>(mass_, inertia_world), offsets_, w, free_wrench,
+                          joint_acceleration_)) {
+            throw SceneError("rigid plant: an arm is singular (a palm cannot move in every direction)");
+        }
+        stage_acceleration_.head(joints) = joint_acceleration_;
+        stage_acceleration_.tail<6>() = grasp_.object_acceleration();
+        if (keep) {
+            acceleration_ = grasp_.object_acceleration();
+            normal_force_.resize(static_cast<std::size_t>(arms.arms()));
+            for (Index i = 0; i < arms.arms(); ++i) {
+                const coopdyn::Pose<double> palm = arms.contact_pose(scratch_.get(), i);
+                // The palm's wrench on the object is -h_i; its normal: the contact frame's z.
+                normal_force_[static_cast<std::size_t>(i)] =
+                    -(palm.orientation * Eigen::Vector3d::UnitZ()).dot(grasp_.palm_wrench(i).head<3>());
+            }
+        }
+    }
+
+    /// d/dt of [q; p; quaternion coeffs (x, y, z, w)].
+    Eigen::VectorXd rate_of_position(const Eigen::VectorXd& position, const Eigen::VectorXd& velocity) const
+    {
+        const Index joints = world_.arms().joints();
+        Eigen::VectorXd rate(joints + 7);
+        rate.head(joints + 3) = velocity.head(joints + 3);
+        const Eigen::Quaterniond orientation(position.segment<4>(joints + 3));
+        rate.tail<4>() = coopdyn::quaternion_derivative_world(orientation, Eigen::Vector3d(velocity.tail<3>())).coeffs();
+        return rate;
+    }
+
+    void advance(const Eigen::VectorXd& position, const Eigen::VectorXd& velocity, const Eigen::VectorXd& position_rate,
+                 const Eigen::VectorXd& velocity_rate, double dt, Eigen::VectorXd& position_out,
+                 Eigen::VectorXd& velocity_out) const
+    {
+        const Index joints = world_.arms().joints();
+        position_out = position + dt * position_rate;
+        position_out.segment<4>(joints + 3).normalize();
+        velocity_out = velocity + dt * velocity_rate;
+    }
+
+    const SceneWorld& world_;
+    DataPointer scratch_;
+    coopdyn::JointSpaceGrasp<double> grasp_;
+    double stiffness_;
+    double damping_;
+    double mass_ = 0.0;
+    Eigen::Matrix3d inertia_ = Eigen::Matrix3d::Identity();  ///< about the centre, body frame
+    Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
+    coopdyn::ControllerInput<double> input_;  ///< the arms' terms at the last evaluate()
+    Eigen::VectorXd state_;     ///< [q; p; quaternion coeffs]
+    Eigen::VectorXd velocity_;  ///< [qdot; v; w]
+    std::vector<Eigen::Vector3d> weld_point_;
+    std::vector<Eigen::Quaterniond> weld_rotation_;
+    Eigen::Matrix3Xd offsets_;
+    std::vector<Vector6> stabilisation_;
+    Vector6 acceleration_;
+    std::vector<double> normal_force_;
+    Eigen::VectorXd stage_acceleration_;
+    Eigen::VectorXd joint_acceleration_;
+    Eigen::VectorXd free_torque_;
+};
+
+}  // namespace scenes
