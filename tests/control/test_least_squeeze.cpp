@@ -6,7 +6,8 @@
 //   of the literal grasp matrix from an SVD, w_0 from the exact constrained motion (the contact
 //   wrenches under the motion torque alone), the internal part |N w|^2 with the printed
 //   N = I - G^+ G, friction rows written out here from the docs' formulas, solved by dual
-//   coordinate descent (Hildreth) and certified by its KKT conditions;
+//   coordinate descent (Hildreth) and an equality solve on its active rows, certified by the KKT
+//   conditions or a duality gap (counted apart where nearly dependent active rows defeat both);
 // - the split margins of a contact wrench against a hand computation, and on two free hands
 //   holding a weight against the closed form.
 // The LWR 4 pair of the box example at rest is in tests/examples/test_box_squeeze.cpp.
