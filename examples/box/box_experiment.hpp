@@ -56,9 +56,7 @@ inline coopdyn::ControllerParameters<double> controller_parameters(const Control
         Eigen::Vector3d::Constant(settings.rotational_damping);
     parameters.posture_stiffness = Eigen::VectorXd::Constant(joints, settings.posture_stiffness);
     parameters.posture_damping = Eigen::VectorXd::Constant(joints, settings.posture_damping);
-    parameters.objective.torque_weight = settings.torque_weight;
-    parameters.objective.moment_weight = settings.moment_weight;
-    parameters.objective.squeeze_weight = settings.squeeze_weight;
+    parameters.objective = settings.objective;
     return parameters;
 }
 
@@ -101,6 +99,16 @@ struct FrictionRows {
     }
     /// coopdyn::friction_margin of a contact-frame wrench (to rounding).
     double margin(const Vector6d& wrench) const noexcept { return (scaled_bounds - unit_rows * wrench).minCoeff(); }
+    /// coopdyn::friction_margins: the force rows' (unilateral, pyramid: N) and the moment rows'
+    /// (torsion, centre of pressure: N m) margins apart; the moment rows are the last
+    /// coopdyn::friction_moment_rows (friction.hpp's row order).
+    coopdyn::FrictionMargins<double> margins(const Vector6d& wrench) const noexcept
+    {
+        const Eigen::Index moment_rows = coopdyn::friction_moment_rows;
+        const Eigen::Index force_rows = unit_rows.rows() - moment_rows;
+        return {(scaled_bounds.head(force_rows) - unit_rows.topRows(force_rows) * wrench).minCoeff(),
+                (scaled_bounds.tail(moment_rows) - unit_rows.bottomRows(moment_rows) * wrench).minCoeff()};
+    }
 };
 
 /// One tick of the log (docs/dual-arm-box.md, "The CSV columns").
@@ -115,8 +123,10 @@ struct TickLog {
     std::array<Vector6d, palms> predicted{};      ///< QP's contact wrench, contact frame [f; t]
     std::array<Vector6d, palms> measured{};       ///< plant's, contact frame
     std::array<Vector6d, palms> measured_world{}; ///< plant's, about the contact point, {w}
-    std::array<double, palms> measured_margin{};  ///< friction margin of the measured wrench, true friction
-    double predicted_margin = 0.0;                ///< tightest margin of the QP's wrenches, controller's friction
+    /// Friction margins of the measured wrench under the true friction: force rows (N), moment rows (N m).
+    std::array<coopdyn::FrictionMargins<double>, palms> measured_margins{};
+    double predicted_force_margin = 0.0;   ///< tightest force-row margin of the QP's wrenches, controller's friction (N)
+    double predicted_moment_margin = 0.0;  ///< tightest moment-row margin of the QP's wrenches (N m)
     std::array<double, palms> slip{};             ///< m, the box relative to each palm since the start
     coopdyn::ControlStatus status = coopdyn::ControlStatus::ok;
     bool qp_ran = false;  ///< the contact QP ran this tick (not after an invalid_input or singular tick)
@@ -194,7 +204,7 @@ void log_palms(const Plant& plant, const PalmFrames& palms_seen, const Controlle
         const Vector6d& world = plant.measured_contact_wrench(palm);
         row.measured_world[i] = world;
         coopdyn::rotate_stack_back(rotation, world, row.measured[i]);  // [R^T f; R^T t], {w} to the palm frame
-        row.measured_margin[i] = friction.margin(row.measured[i]);
+        row.measured_margins[i] = friction.margins(row.measured[i]);
         const Eigen::Vector3d now = rotation.transpose() * (box_position - palms_seen.position[i]);
         row.slip[i] = (now - box_in_palm[i]).head<2>().norm();
     }
@@ -216,7 +226,8 @@ TickLog tick_log(const Plant& plant, const ControllerInput& input, const Desired
     row.external_wrench = data.external_wrench;
     row.disturbance = disturbance;
     row.box_acceleration = plant.box_acceleration().template head<3>();
-    row.predicted_margin = data.tightest_margin;
+    row.predicted_force_margin = data.tightest_force_margin;
+    row.predicted_moment_margin = data.tightest_moment_margin;
     row.status = data.status;
     row.qp_ran = data.qp_ran;
     row.qp_status = data.qp_status;

@@ -28,7 +28,8 @@ struct BoxSummary {
     double peak_normal_predicted = 0.0;  ///< largest normal force of either palm, N
     double peak_normal_measured = 0.0;
     double max_slip = 0.0;               ///< m
-    double min_true_margin = 0.0;        ///< of the measured wrenches under the true friction
+    double min_true_force_margin = 0.0;   ///< of the measured wrenches under the true friction: force rows, N
+    double min_true_moment_margin = 0.0;  ///< and moment rows (torsion, centre of pressure), N m
     double max_force_error = 0.0;        ///< max |f_predicted - f_measured| over palms and ticks, N
     /// The normal force the plant needed: |f_t| / mu_true of the measured wrenches, largest over
     /// the run, against the Coulomb estimate W / (2 mu_true) of the heaviest static load
@@ -55,7 +56,7 @@ inline BoxSummary summarise(const BoxScenario& scenario, const std::string& plan
     s.experiment = scenario.name;
     s.plant = plant;
     s.dropped = run.dropped;
-    s.min_true_margin = std::numeric_limits<double>::infinity();
+    s.min_true_force_margin = s.min_true_moment_margin = std::numeric_limits<double>::infinity();
     int rest_samples = 0;
     for (const TickLog& row : run.log) {
         // A tick that computed no control (invalid_input, singular) has no prediction to compare:
@@ -72,7 +73,8 @@ inline BoxSummary summarise(const BoxScenario& scenario, const std::string& plan
             s.peak_normal_predicted = std::max(s.peak_normal_predicted, row.predicted[i](2));
             s.peak_normal_measured = std::max(s.peak_normal_measured, row.measured[i](2));
             s.max_slip = std::max(s.max_slip, row.slip[i]);
-            s.min_true_margin = std::min(s.min_true_margin, row.measured_margin[i]);
+            s.min_true_force_margin = std::min(s.min_true_force_margin, row.measured_margins[i].force);
+            s.min_true_moment_margin = std::min(s.min_true_moment_margin, row.measured_margins[i].moment);
             if (predicted) {
                 s.max_force_error =
                     std::max(s.max_force_error, (row.predicted[i].head<3>() - row.measured[i].head<3>()).norm());
@@ -112,10 +114,11 @@ inline std::vector<std::string> box_log_columns()
             }
             columns.push_back(std::string(palm) + "_" + kind + "_force_norm");
         }
-        columns.push_back(std::string(palm) + "_true_margin");
+        columns.push_back(std::string(palm) + "_true_force_margin");
+        columns.push_back(std::string(palm) + "_true_moment_margin");
         columns.push_back(std::string(palm) + "_slip");
     }
-    for (const char* name : {"predicted_margin", "status", "qp_status", "qp_iterations"}) {
+    for (const char* name : {"predicted_force_margin", "predicted_moment_margin", "status", "qp_status", "qp_iterations"}) {
         columns.emplace_back(name);
     }
     for (const char* kind : {"tau_u", "tau_c"}) {
@@ -156,10 +159,12 @@ inline void write_box_log(const std::filesystem::path& path, const ExperimentRun
             csv.number(row.predicted[i].head<3>().norm());
             numbers(row.measured[i]);
             csv.number(row.measured[i].head<3>().norm());
-            csv.number(row.measured_margin[i]);
+            csv.number(row.measured_margins[i].force);
+            csv.number(row.measured_margins[i].moment);
             csv.number(row.slip[i]);
         }
-        csv.number(row.predicted_margin);
+        csv.number(row.predicted_force_margin);
+        csv.number(row.predicted_moment_margin);
         csv.text(coopdyn::to_string(row.status));
         csv.text(row.qp_ran ? coopdyn::to_string(row.qp_status) : "not_run");  // no stale status
         csv.number(row.qp_iterations);
@@ -262,14 +267,15 @@ inline std::string format_optional(const char* pattern, const std::optional<doub
 /// The printed table: one row per run, the paper's numbers alongside.
 inline void print_box_table(const std::vector<std::pair<BoxScenario, BoxSummary>>& runs)
 {
-    std::printf("\n%-9s %-7s %9s %9s %6s %9s %9s %6s %8s %8s %9s %8s %9s %6s %6s\n", "", "", "rest N", "meas", "paper",
-                "peak N", "meas", "paper", "slip mm", "margin", "needed N", "holds N", "W/(2mu)", "track", "RTF");
+    std::printf("\n%-9s %-7s %9s %9s %6s %9s %9s %6s %8s %8s %8s %9s %8s %9s %6s %6s\n", "", "", "rest N", "meas", "paper",
+                "peak N", "meas", "paper", "slip mm", "F mrg N", "M mrg Nm", "needed N", "holds N", "W/(2mu)", "track",
+                "RTF");
     for (const auto& [scenario, s] : runs) {
-        std::printf("%-9s %-7s %9.1f %9.1f %6s %9.1f %9.1f %6s %8.3f %8.2f %9.1f %8s %9.1f %6.3f %6.0f%s\n",
+        std::printf("%-9s %-7s %9.1f %9.1f %6s %9.1f %9.1f %6s %8.3f %8.2f %8.3f %9.1f %8s %9.1f %6.3f %6.0f%s\n",
                     s.experiment.c_str(), s.plant.c_str(), s.rest_normal_predicted, s.rest_normal_measured,
                     format_optional("%.0f", scenario.paper.squeeze_at_rest).c_str(), s.peak_normal_predicted,
                     s.peak_normal_measured, format_optional("%.0f", scenario.paper.squeeze_pushed).c_str(),
-                    1e3 * s.max_slip, s.min_true_margin, s.needed_normal,
+                    1e3 * s.max_slip, s.min_true_force_margin, s.min_true_moment_margin, s.needed_normal,
                     format_optional("%.1f", s.minimum_squeeze).c_str(), s.coulomb_estimate, s.max_tracking_error,
                     s.real_time_factor, s.dropped ? "  DROPPED" : "");
     }

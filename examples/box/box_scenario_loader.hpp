@@ -41,14 +41,53 @@ inline Experiment experiment(const JsonReader& reader, const json& value, const 
     return Experiment::hold;
 }
 
+/// The contact QP's objective by name (SqueezeObjective's presets, docs/control.md).
+inline coopdyn::SqueezeObjective<double> objective_preset(const JsonReader& reader, const json& value,
+                                                          const std::string& path)
+{
+    using Objective = coopdyn::SqueezeObjective<double>;
+    const std::string text = reader.string(value, path);
+    if (text == "least_squeeze") {
+        return Objective::least_squeeze();
+    }
+    if (text == "least_torque_centred") {
+        return Objective::least_torque_centred();
+    }
+    if (text == "paper") {
+        return Objective::paper();
+    }
+    reader.fail(path, "must be one of least_squeeze, least_torque_centred, paper, got \"" + text + "\"");
+    return Objective::least_squeeze();
+}
+
+/// The objective: the preset `objective` (default least_torque_centred, ControllerSettings), then
+/// each weight given.
+inline void read_objective(const JsonReader& reader, const json& object, const std::string& path, ControllerSettings& c)
+{
+    if (const json* preset = reader.optional(object, "objective")) {
+        c.objective = objective_preset(reader, *preset, example_common::join_path(path, "objective"));
+    }
+    const auto non_negative = [&](const json& v, const std::string& p) { return reader.non_negative(v, p); };
+    coopdyn::SqueezeObjective<double>& o = c.objective;
+    o.internal_weight = optional_number(reader, object, path, "internal_weight", o.internal_weight, non_negative);
+    o.torque_weight = optional_number(reader, object, path, "torque_weight", o.torque_weight, non_negative);
+    o.moment_weight = optional_number(reader, object, path, "moment_weight", o.moment_weight, non_negative);
+    o.squeeze_weight = optional_number(reader, object, path, "squeeze_weight", o.squeeze_weight, non_negative);
+    if (!(o.internal_weight + o.torque_weight + o.squeeze_weight > 0.0)) {
+        reader.fail(example_common::join_path(path, "squeeze_weight"),
+                    "must be positive when torque_weight is 0 and internal_weight is 0 (the QP needs a positive "
+                    "definite objective)");
+    }
+}
+
 inline ControllerSettings controller(const JsonReader& reader, const json& object, const std::string& path)
 {
     reader.expect_object(object, path);
     reader.only_keys(object, path,
                      {"friction", "torsional_friction", "patch_half_size", "minimum_normal_force",
                       "translational_stiffness", "rotational_stiffness", "translational_damping",
-                      "rotational_damping", "posture_stiffness", "posture_damping", "torque_weight",
-                      "moment_weight", "squeeze_weight", "acceleration_cutoff"});
+                      "rotational_damping", "posture_stiffness", "posture_damping", "objective",
+                      "internal_weight", "torque_weight", "moment_weight", "squeeze_weight", "acceleration_cutoff"});
     ControllerSettings c;
     const auto positive = [&](const json& v, const std::string& p) { return reader.positive(v, p); };
     const auto non_negative = [&](const json& v, const std::string& p) { return reader.non_negative(v, p); };
@@ -67,13 +106,7 @@ inline ControllerSettings controller(const JsonReader& reader, const json& objec
     c.rotational_damping = optional_number(reader, object, path, "rotational_damping", c.rotational_damping, non_negative);
     c.posture_stiffness = optional_number(reader, object, path, "posture_stiffness", c.posture_stiffness, non_negative);
     c.posture_damping = optional_number(reader, object, path, "posture_damping", c.posture_damping, non_negative);
-    c.torque_weight = optional_number(reader, object, path, "torque_weight", c.torque_weight, non_negative);
-    c.moment_weight = optional_number(reader, object, path, "moment_weight", c.moment_weight, non_negative);
-    c.squeeze_weight = optional_number(reader, object, path, "squeeze_weight", c.squeeze_weight, non_negative);
-    if (!(c.torque_weight + c.squeeze_weight > 0.0)) {
-        reader.fail(example_common::join_path(path, "squeeze_weight"),
-                    "must be positive when torque_weight is 0 (the QP needs a positive definite objective)");
-    }
+    read_objective(reader, object, path, c);
     c.acceleration_cutoff = optional_number(reader, object, path, "acceleration_cutoff", c.acceleration_cutoff,
                                             [&](const json& v, const std::string& p) {
                                                 return reader.in_range(v, p, 0.0, 500.0);  // Nyquist at 1 kHz

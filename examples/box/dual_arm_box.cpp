@@ -139,8 +139,8 @@ int run(const CommandLine& command, std::vector<BoxScenario> scenarios)
                 scenarios.front().box_mass);
     print_box_table(summaries);
     std::printf("  rest/peak N: normal force per palm, the QP's (expected) and the plant's (measured); slip: the box "
-                "relative to the palms;\n  margin: tightest friction margin of the measured wrenches under the true "
-                "friction (N); needed N: |f_t| / mu_true;\n  holds N: the smallest squeeze that still holds the heaviest static "
+                "relative to the palms;\n  F mrg N, M mrg Nm: tightest friction margins of the measured wrenches under the "
+                "true friction, force rows (N) and moment rows (N m); needed N: |f_t| / mu_true;\n  holds N: the smallest squeeze that still holds the heaviest static "
                 "load in MuJoCo (measured); W/(2mu): its Coulomb estimate;\n  track: largest |x - x_d| (m) outside a "
                 "person's hold; RTF: real-time factor.\n");
     std::printf("logs and plot scripts: %s%s\n", command.output.c_str(),

@@ -46,8 +46,9 @@ inline BoxScenario squeeze_probe(const BoxScenario& scenario, double squeeze)
     probe.controller.friction = probe_opening;
     probe.controller.torsional_friction = probe_opening;
     probe.controller.patch_half_size = probe_opening;
-    probe.controller.torque_weight = 0.0;
-    probe.controller.squeeze_weight = 1.0;
+    probe.controller.objective.internal_weight = 0.0;
+    probe.controller.objective.torque_weight = 0.0;
+    probe.controller.objective.squeeze_weight = 1.0;
     probe.controller.minimum_normal_force = squeeze;
     if (scenario.push) {
         Push held = *scenario.push;

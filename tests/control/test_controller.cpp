@@ -100,11 +100,15 @@ TEST(Controller, TorquesGiveTheObjectL15AndTheContactsThePredictedWrenches)
 
 TEST(Controller, FeasibleTicksMeetEveryFrictionRowAndTheirReportedMargins)
 {
+    // The least squeeze torque (the default until the least squeeze, errata E13): z = 0 costs
+    // nothing, so at its optimum some friction row binds (asserted below). The least squeeze's
+    // rows and margins are checked against an independent QP in test_least_squeeze.cpp.
     Rng rng(102);
     int checked = 0;
     for (const ArmCase& a : arm_cases) {
         for (int trial = 0; trial < 4; ++trial) {
-            const Case c = random_case(a.arms, a.torso, rng);
+            Case c = random_case(a.arms, a.torso, rng);
+            c.parameters.objective = coopdyn::SqueezeObjective<double>::least_torque_centred();
             const Model model(c.parameters);
             Data data(model);
             coopdyn::controller_tick(model, data, c.input);
@@ -123,6 +127,10 @@ TEST(Controller, FeasibleTicksMeetEveryFrictionRowAndTheirReportedMargins)
                 EXPECT_LT((local - data.contact_frame_wrenches.col(i)).norm(), 1e-12 * (1 + local.norm()));
                 const double margin = coopdyn::friction_margin(model.contact(i).friction, local);
                 EXPECT_NEAR(margin, data.friction_margins(i), 1e-9 * (1 + local.norm()));
+                const auto split = coopdyn::friction_margins(model.contact(i).friction, local);
+                EXPECT_NEAR(split.force, data.force_margins(i), 1e-9 * (1 + local.norm()));
+                EXPECT_NEAR(split.moment, data.moment_margins(i), 1e-9 * (1 + local.norm()));
+                EXPECT_EQ(std::min(split.force, split.moment), margin);
                 EXPECT_GE(margin, -1e-9 * local.norm());
                 EXPECT_GE(local(2), palm_friction().minimum_normal_force * (1 - 1e-12));
                 tightest = std::min(tightest, margin);
@@ -318,7 +326,7 @@ TEST(ContactQp, TheMomentWeightKeepsTheCentreOfPressureCentral)
     // patch's edge; weighted, the moments stay small.
     Rng rng(103);
     const double weight = 3.0 * 9.81;
-    double paper_worst = 0, paper_mean = 0, weighted_worst = 0, weighted_mean = 0;
+    double paper_worst = 0, paper_mean = 0, weighted_worst = 0, weighted_mean = 0, least_worst = 0, least_mean = 0;
     int count = 0;
     for (int trial = 0; trial < 20; ++trial) {
         JointSpaceSystem s = random_joint_space_system(2, trial % 2 == 1, rng);
@@ -333,13 +341,20 @@ TEST(ContactQp, TheMomentWeightKeepsTheCentreOfPressureCentral)
         c.input.desired_acceleration.setZero();
         c.input.desired_pose = {Vector3d(c.input.object.pose.position + Vector3d(0, 0, weight / 500.0)),
                                 c.input.object.pose.orientation};
+        // The measurement that chose moment_weight = 1e4 next to the paper's squeeze torque (the
+        // default until the least squeeze, errata E13).
+        c.parameters.objective = coopdyn::SqueezeObjective<double>::least_torque_centred();
         const Model weighted(c.parameters);
-        c.parameters.objective.moment_weight = 0.0;  // the paper's |tau_c|^2 alone
+        c.parameters.objective = coopdyn::SqueezeObjective<double>::paper();  // |tau_c|^2 alone
         const Model paper(c.parameters);
-        Data weighted_data(weighted), paper_data(paper);
+        c.parameters.objective = coopdyn::SqueezeObjective<double>::least_squeeze();  // the default
+        const Model least(c.parameters);
+        Data weighted_data(weighted), paper_data(paper), least_data(least);
         coopdyn::controller_tick(weighted, weighted_data, c.input);
         coopdyn::controller_tick(paper, paper_data, c.input);
-        if (weighted_data.status != coopdyn::ControlStatus::ok || paper_data.status != coopdyn::ControlStatus::ok) {
+        coopdyn::controller_tick(least, least_data, c.input);
+        if (weighted_data.status != coopdyn::ControlStatus::ok || paper_data.status != coopdyn::ControlStatus::ok ||
+            least_data.status != coopdyn::ControlStatus::ok) {
             continue;
         }
         ++count;
@@ -349,6 +364,9 @@ TEST(ContactQp, TheMomentWeightKeepsTheCentreOfPressureCentral)
         weighted_worst = std::max(weighted_worst, w);
         paper_mean += p;
         weighted_mean += w;
+        const double l = centre_of_pressure_offset(least_data, palm_friction());
+        least_worst = std::max(least_worst, l);
+        least_mean += l;
         // Optimality of each: the weighted squeeze never has larger contact moments than the paper's.
         EXPECT_LE(weighted_data.contact_frame_wrenches.bottomRows<3>().squaredNorm(),
                   paper_data.contact_frame_wrenches.bottomRows<3>().squaredNorm() * (1 + 1e-9) + 1e-12);
@@ -356,11 +374,14 @@ TEST(ContactQp, TheMomentWeightKeepsTheCentreOfPressureCentral)
     ASSERT_GT(count, 10);
     paper_mean /= count;
     weighted_mean /= count;
+    least_mean /= count;
     std::printf("[ centre of pressure / patch half-size ] %d objects at rest: paper's objective mean %.2f worst "
-                "%.2f; with the default moment_weight 1e4 mean %.3f worst %.3f\n",
-                count, paper_mean, paper_worst, weighted_mean, weighted_worst);
+                "%.2f; least_torque_centred (moment_weight 1e4) mean %.3f worst %.3f; least_squeeze (the default) "
+                "mean %.2e worst %.2e\n",
+                count, paper_mean, paper_worst, weighted_mean, weighted_worst, least_mean, least_worst);
     EXPECT_GT(paper_worst, 0.999);  // the paper's objective puts it on the patch's edge
     EXPECT_LT(weighted_worst, 0.15);
+    EXPECT_LT(least_worst, 0.15);
 }
 
 // ---- warm start, fixed sizes, allocation ---------------------------------------------------

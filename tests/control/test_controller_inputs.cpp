@@ -145,8 +145,24 @@ TEST(ControllerModel, RefusesEachBadParameterByName)
     }
     {
         Parameters p = valid_parameters();
+        p.objective.internal_weight = -1.0;
+        expect_refused(p, "objective.internal_weight");
+    }
+    {
+        Parameters p = valid_parameters();
+        p.objective.internal_weight = std::numeric_limits<double>::quiet_NaN();
+        expect_refused(p, "objective.internal_weight");
+    }
+    {
+        Parameters p = valid_parameters();
+        p.objective = coopdyn::SqueezeObjective<double>::least_torque_centred();
         p.objective.torque_weight = 0.0;
         p.objective.squeeze_weight = 0.0;  // the Hessian would be singular
+        expect_refused(p, "objective.squeeze_weight");
+    }
+    {
+        Parameters p = valid_parameters();
+        p.objective.internal_weight = 0.0;  // the least squeeze's default has neither of the others
         expect_refused(p, "objective.squeeze_weight");
     }
     {

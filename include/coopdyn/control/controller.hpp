@@ -73,7 +73,16 @@ struct ControllerData {
     /// Column i: contact i's predicted wrench [f; t] in its contact frame {c_i}: f_z is the normal
     /// force, (f_x, f_y) the tangential force, t the moments about the contact point.
     Eigen::Matrix<Scalar, 6, Arms> contact_frame_wrenches;
-    ArmVector friction_margins;          ///< per contact, friction_margin of its predicted wrench
+    /// Per contact, the margins of its predicted wrench split by the rows' units (friction_margins
+    /// of friction.hpp): force_margins over the unilateral and pyramid rows (N), moment_margins
+    /// over the torsion and centre-of-pressure rows (N m); < 0: that row is violated.
+    ArmVector force_margins;
+    ArmVector moment_margins;
+    Scalar tightest_force_margin = Scalar(0);   ///< the smallest of force_margins (N)
+    Scalar tightest_moment_margin = Scalar(0);  ///< the smallest of moment_margins (N m)
+    /// Per contact, friction_margin of its predicted wrench: the smaller of its force and moment
+    /// margins, which mixes N and N m (kept for compatibility; the split margins above say which).
+    ArmVector friction_margins;
     Scalar tightest_margin = Scalar(0);  ///< the smallest of friction_margins (< 0: a row is violated)
     Index tightest_contact = 0;          ///< the contact it belongs to
     InternalVector squeeze;              ///< z*, the internal-wrench coordinates (N, N m; B orthonormal)
@@ -123,6 +132,8 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       contact_wrench_bias(StackVector::Zero(6 * model.arms())),
       contact_wrenches(StackVector::Zero(6 * model.arms())),
       contact_frame_wrenches(Eigen::Matrix<Scalar, 6, Arms>::Zero(6, model.arms())),
+      force_margins(ArmVector::Zero(model.arms())),
+      moment_margins(ArmVector::Zero(model.arms())),
       friction_margins(ArmVector::Zero(model.arms())),
       squeeze(InternalVector::Zero(6 * (model.arms() - 1))),
       joint_acceleration(JointVector::Zero(model.joints())),
@@ -195,6 +206,10 @@ void controller_impedance(const Model& model, Data& data, const Input& input) no
 /// ControllerModel::contact_qp_constraints, set at construction) and the bounds
 /// d = b - A_w w_0,i = b - A_i [R_ci^T f_0,i; R_ci^T t_0,i], and the objective's H and g
 /// (SqueezeObjective; its moment term's B_m^T B_m is constant too, ControllerModel::moment_gram).
+/// The least-squeeze term internal_weight |B^T w_0 + z|^2 adds internal_weight I to H and
+/// internal_weight B^T w_0 to g: B is orthonormal (B^T B = I, ControllerModel checks the body
+/// basis once; a rotation per contact keeps it so), so B^T w_0 + z = B^T w(z) are the coordinates
+/// of the internal part B B^T w(z) of the whole contact wrench, errata E13.
 template <typename Model, typename Data> void controller_contact_qp(const Model& model, Data& data) noexcept
 {
     using Scalar = typename Model::Scalar;
@@ -203,10 +218,14 @@ template <typename Model, typename Data> void controller_contact_qp(const Model&
     // Coefficient-based products: at these sizes Eigen's GEMM path costs more in packing than in
     // arithmetic (as in ProjectedDynamics::compute).
     const auto& jacobian_basis = data.dynamics.reduced_jacobian_transpose;  // J^T B
-    data.hessian.noalias() = objective.torque_weight * jacobian_basis.transpose().lazyProduct(jacobian_basis);
-    data.hessian.diagonal().array() += objective.squeeze_weight;
+    if (objective.torque_weight != Scalar(0)) {
+        data.hessian.noalias() = objective.torque_weight * jacobian_basis.transpose().lazyProduct(jacobian_basis);
+    } else {
+        data.hessian.setZero();
+    }
+    data.hessian.diagonal().array() += objective.squeeze_weight + objective.internal_weight;
     data.hessian.noalias() += objective.moment_weight * model.moment_gram();
-    data.gradient.setZero();
+    data.gradient.noalias() = objective.internal_weight * basis.transpose().lazyProduct(data.contact_wrench_bias);
     for (Index i = 0; i < model.arms(); ++i) {
         const auto moment_rows = basis.template middleRows<3>(6 * i + 3);
         const auto bias = data.contact_wrench_bias.template segment<6>(6 * i);
@@ -274,25 +293,33 @@ template <typename Model, typename Data> void controller_solve_squeeze(const Mod
 }
 
 /// tau_c = J^T B z, w = w_0 + B z, each contact's wrench in its frame, and the friction margins
-/// (the rows' slacks d - C z = b - A_w w, over the rows' norms).
+/// (the rows' slacks d - C z = b - A_w w, over the rows' norms), split into the force rows (the
+/// first friction_force_rows(n) of a contact, N) and the moment rows (the rest, N m).
 template <typename Model, typename Data> void controller_contact_outputs(const Model& model, Data& data) noexcept
 {
     using Scalar = typename Model::Scalar;
+    const Scalar infinity = std::numeric_limits<Scalar>::infinity();
     data.squeeze_torque.noalias() = data.dynamics.reduced_jacobian_transpose.lazyProduct(data.squeeze);
     data.contact_wrenches = data.contact_wrench_bias;
     data.contact_wrenches.noalias() += data.dynamics.internal_basis.lazyProduct(data.squeeze);
-    data.tightest_margin = std::numeric_limits<Scalar>::infinity();
+    data.tightest_margin = data.tightest_force_margin = data.tightest_moment_margin = infinity;
     for (Index i = 0; i < model.arms(); ++i) {
         rotate_stack_back(data.contact_rotations.template middleCols<3>(3 * i), data.contact_wrenches.template segment<6>(6 * i),
                           data.contact_frame_wrenches.col(i));
-        Scalar margin = std::numeric_limits<Scalar>::infinity();
+        const Index first_moment_row = model.row_offset(i) + friction_force_rows(model.contact(i).friction.pyramid_edges);
+        Scalar force = infinity, moment = infinity;
         for (Index k = model.row_offset(i); k < model.row_offset(i) + model.row_count(i); ++k) {
             const Scalar slack = data.bounds(k) - model.contact_qp_constraints().row(k).dot(data.squeeze);
+            Scalar& margin = k < first_moment_row ? force : moment;
             margin = std::min(margin, slack / model.row_norms()(k));
         }
-        data.friction_margins(i) = margin;
-        if (margin < data.tightest_margin) {
-            data.tightest_margin = margin;
+        data.force_margins(i) = force;
+        data.moment_margins(i) = moment;
+        data.friction_margins(i) = std::min(force, moment);
+        data.tightest_force_margin = std::min(data.tightest_force_margin, force);
+        data.tightest_moment_margin = std::min(data.tightest_moment_margin, moment);
+        if (data.friction_margins(i) < data.tightest_margin) {
+            data.tightest_margin = data.friction_margins(i);
             data.tightest_contact = i;
         }
     }
@@ -335,7 +362,11 @@ void controller_no_control(Data& data, ControlStatus status, const Torque& torqu
     data.squeeze.setZero();
     data.contact_wrenches.setZero();
     data.contact_frame_wrenches.setZero();
+    data.force_margins.setZero();
+    data.moment_margins.setZero();
     data.friction_margins.setZero();
+    data.tightest_force_margin = Scalar(0);
+    data.tightest_moment_margin = Scalar(0);
     data.tightest_margin = Scalar(0);
     data.tightest_contact = 0;
     data.qp_ran = false;

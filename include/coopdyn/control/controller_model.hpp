@@ -26,6 +26,8 @@
 #include "coopdyn/spatial/pose.hpp"
 #include "coopdyn/spatial/spatial_vector.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -43,26 +45,51 @@ template <typename ScalarType> struct ContactPoint {
     ContactFriction<Scalar> friction{};
 };
 
-/// \brief What the contact QP minimises over the squeeze z (w(z) = w_0 + B z, tau_c = J^T B z):
+/// \brief What the contact QP minimises over the squeeze z (w(z) = w_0 + B z, tau_c = J^T B z, B
+/// the orthonormal basis of the internal wrenches, so B^T B = I and |B z| = |z|):
 ///
-///     torque_weight |J^T B z|^2  +  moment_weight sum_i |t_i(z)|^2  +  squeeze_weight |B z|^2
+///     internal_weight |B^T w_0 + z|^2  +  moment_weight sum_i |t_i(z)|^2
+///       +  torque_weight |J^T B z|^2  +  squeeze_weight |B z|^2
 ///
-/// The first term is the paper's L(20) (tau_c^T tau_c). The second penalises the contact moments
-/// t_i of w(z) about each contact point: the paper's objective alone moves the centre of pressure
-/// to the patch's edge even at rest, where the palm is at the brink of rolling, because a contact
-/// moment is a cheap way to save joint torque; weighted, the moments stay as small as the load
-/// allows and the centre of pressure central. Both terms are in N^2 m^2, so moment_weight is
-/// dimensionless. Its default 1e4 was chosen by measurement (tests/control/test_controller.cpp,
-/// two random arms holding an object at rest): the paper's objective (moment_weight = 0) puts the
-/// centre of pressure on the patch's edge in every case, 1e2 in most, 1e3 at 10-75 % of the
-/// half-size, 1e4 within 8 % for about 15 % more squeeze torque (docs/control.md, "Where the
-/// squeeze sits"). The third term (N^2, |B z| = |z|) keeps the Hessian positive definite when
-/// J^T B loses rank; its default is negligible.
+/// - internal_weight: the least squeeze. B^T w_0 + z = B^T w(z) are the coordinates of the
+///   internal part B B^T w of the WHOLE contact wrench, so this term minimises how hard the hands
+///   squeeze, including the internal wrench w_0 already holds (the arms' own weight and dynamics
+///   that the projection leaves to the contacts). At rest each palm's normal force comes out as
+///   max(f_min, what friction needs for the load) (errata E13; docs/control.md, "The least
+///   squeeze"). In N^2.
+/// - moment_weight: the contact moments t_i of w(z) about each contact point, which keeps the
+///   centre of pressure central (docs/control.md, "Where the squeeze sits"). In N^2 m^2.
+/// - torque_weight: the paper's L(20), tau_c^T tau_c, the least squeeze TORQUE. It is zero at
+///   z = 0, so alone it keeps whatever internal wrench w_0 holds (the box example's LWR 4 pair at
+///   rest, mu 0.5, f_min 2 N: 18.2 N per palm for 0.5 kg where 4.9 N suffices, 3.7x;
+///   tests/examples/test_box_squeeze.cpp). In N^2 m^2.
+/// - squeeze_weight: |B z|^2 = |z|^2, the squeeze added to w_0 (not the whole internal wrench):
+///   a small ridge that keeps the Hessian positive definite when J^T B loses rank. In N^2.
+///
+/// The default is least_squeeze(); least_torque_centred() was the default until this release,
+/// paper() is L(20) alone. Each weight >= 0, and internal_weight + torque_weight +
+/// squeeze_weight > 0 (the Hessian must be positive definite); ControllerModel refuses anything
+/// else, naming the weight.
 template <typename ScalarType> struct SqueezeObjective {
     using Scalar = ScalarType;
-    Scalar torque_weight = Scalar(1);      ///< >= 0, on |tau_c|^2 (L(20))
-    Scalar moment_weight = Scalar(1e4);    ///< >= 0, on the contact moments (0: the paper's objective)
-    Scalar squeeze_weight = Scalar(1e-6);  ///< >= 0, on |B z|^2; torque_weight + squeeze_weight > 0
+    Scalar internal_weight = Scalar(1);    ///< >= 0, on |B^T w(z)|^2, the internal part of w (the least squeeze)
+    Scalar moment_weight = Scalar(1e4);    ///< >= 0, on the contact moments (centre of pressure central)
+    Scalar torque_weight = Scalar(0);      ///< >= 0, on |tau_c|^2 (L(20), the least squeeze torque)
+    Scalar squeeze_weight = Scalar(0);     ///< >= 0, on |B z|^2 (a ridge)
+
+    /// The default: the least internal wrench, the centre of pressure kept central (moment_weight
+    /// 1e4 N^2 per (N m)^2: a 1 N m contact moment costs as much as a 100 N squeeze, so the moments
+    /// stay as small as the load allows and the squeeze is what friction and f_min need).
+    static SqueezeObjective least_squeeze() noexcept { return {Scalar(1), Scalar(1e4), Scalar(0), Scalar(0)}; }
+    /// The default until this release: the paper's least squeeze torque L(20) plus the centring
+    /// moment term (moment_weight 1e4, dimensionless here: both in N^2 m^2) and a 1e-6 ridge.
+    static SqueezeObjective least_torque_centred() noexcept
+    {
+        return {Scalar(0), Scalar(1e4), Scalar(1), Scalar(1e-6)};
+    }
+    /// The paper's objective L(20), tau_c^T tau_c, with the 1e-6 ridge: the centre of pressure
+    /// goes to the patch's edge and the internal wrench of w_0 stays (errata E13).
+    static SqueezeObjective paper() noexcept { return {Scalar(0), Scalar(0), Scalar(1), Scalar(1e-6)}; }
 };
 
 /// \brief Options of the contact QP (docs/control.md, "When friction cannot hold the load").
@@ -242,13 +269,14 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::validate(const ControllerPara
     require_joint_gains(parameters.posture_stiffness, "posture_stiffness");
     require_joint_gains(parameters.posture_damping, "posture_damping");
     const SqueezeObjective<Scalar>& objective = parameters.objective;
+    detail::require_non_negative(objective.internal_weight, model, "objective.internal_weight");
     detail::require_non_negative(objective.torque_weight, model, "objective.torque_weight");
     detail::require_non_negative(objective.moment_weight, model, "objective.moment_weight");
     detail::require_non_negative(objective.squeeze_weight, model, "objective.squeeze_weight");
-    if (!(objective.torque_weight + objective.squeeze_weight > Scalar(0))) {
+    if (!(objective.internal_weight + objective.torque_weight + objective.squeeze_weight > Scalar(0))) {
         detail::fail(model, "objective.squeeze_weight",
-                     "must be positive when objective.torque_weight is zero (the QP's Hessian must be "
-                     "positive definite)");
+                     "must be positive when objective.internal_weight and objective.torque_weight are zero "
+                     "(the QP's Hessian must be positive definite)");
     }
     if (parameters.qp.iteration_limit < 0) {
         detail::fail(model, "qp.iteration_limit",
@@ -281,6 +309,22 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::build_rows()
     }
     body_internal_basis_ = internal_wrench_basis(positions);
     const Index internal = body_internal_basis_.cols();
+    // B^T B = I is what the objective's units rest on (|B z| = |z| in N and N m, and B^T w_0 + z
+    // the coordinates of w's internal part: SqueezeObjective); each tick only rotates B per
+    // contact, which keeps it. Checked once here, to rounding.
+    using std::abs;
+    const Eigen::Matrix<Scalar, Internal, Internal> gram = body_internal_basis_.transpose() * body_internal_basis_;
+    Scalar departure(0);
+    for (Index j = 0; j < internal; ++j) {
+        for (Index k = 0; k < internal; ++k) {
+            departure = std::max(departure, Scalar(abs(gram(j, k) - (j == k ? Scalar(1) : Scalar(0)))));
+        }
+    }
+    if (!(departure <= Scalar(1000) * std::numeric_limits<Scalar>::epsilon())) {
+        detail::fail(detail::ErrorContext{detail::ErrorKind::model, "controller"}, "contacts",
+                     "the internal-wrench basis of these contact positions is not orthonormal (departure " +
+                         std::to_string(static_cast<double>(departure)) + ")");
+    }
     contact_qp_constraints_ = Eigen::Matrix<Scalar, Rows, Internal>::Zero(total, internal);
     moment_gram_ = Eigen::Matrix<Scalar, Internal, Internal>::Zero(internal, internal);
     for (Index i = 0; i < arms_; ++i) {

@@ -28,8 +28,19 @@
 
 namespace coopdyn {
 
+/// The force rows of one contact come first: the unilateral row and the n pyramid facets, n + 1
+/// rows on f (their margins in N). contact_frame_friction_rows' order is the one owner of this.
+constexpr int friction_force_rows(int edges) noexcept { return edges == Eigen::Dynamic ? Eigen::Dynamic : edges + 1; }
+
+/// The moment rows follow the force rows: torsion (+, -), t_x (+, -), t_y (+, -), 6 rows bounding
+/// the moments by multiples of f_z (their margins in N m).
+inline constexpr int friction_moment_rows = 6;
+
 /// Rows of one contact's friction constraints: n + 7 (Dynamic passes through).
-constexpr int friction_rows(int edges) noexcept { return edges == Eigen::Dynamic ? Eigen::Dynamic : edges + 7; }
+constexpr int friction_rows(int edges) noexcept
+{
+    return edges == Eigen::Dynamic ? Eigen::Dynamic : friction_force_rows(edges) + friction_moment_rows;
+}
 
 /// The largest pyramid a contact may use (ContactFriction::validate): 64 edges approximate the
 /// cone to 0.12 % (cos(pi/64)), and the bound lets friction_margin work without the heap.
@@ -91,7 +102,7 @@ void contact_frame_friction_rows(const ContactFriction<Scalar>& friction, const 
         rows(1 + k, 1) = sin(angle);
         rows(1 + k, 2) = -facet_reach;
     }
-    const Index torsion = 1 + edges;
+    const Index torsion = friction_force_rows(edges);  // the moment rows follow the force rows
     for (int sign = 0; sign < 2; ++sign) {
         const Scalar s = sign == 0 ? Scalar(1) : Scalar(-1);
         rows(torsion + sign, 5) = s;  // +-t_z - gamma f_z <= 0
@@ -139,12 +150,60 @@ typename DerivedRows::Scalar friction_margin(const Eigen::MatrixBase<DerivedRows
     return margin;
 }
 
+/// \brief A contact's friction margin split by the rows' units: `force`, the smallest of the force
+/// rows' (unilateral and pyramid, the first friction_force_rows(n)) normalised slacks, in N;
+/// `moment`, the smallest of the moment rows' (torsion and centre of pressure, the last
+/// friction_moment_rows), in N m. friction_margin is the smaller of the two.
+template <typename ScalarType> struct FrictionMargins {
+    using Scalar = ScalarType;
+    Scalar force = Scalar(0);   ///< N: distance to the nearest force boundary (< 0: slips, or pulls)
+    Scalar moment = Scalar(0);  ///< N m: distance to the nearest moment boundary (< 0: twists or rolls)
+};
+
+/// \brief friction_margin split into the force and the moment rows' margins (FrictionMargins), on
+/// rows and bounds built once with contact_frame_friction_rows (n + 7 rows, in its order).
+/// noexcept; no allocation.
+template <typename DerivedRows, typename DerivedBounds, typename DerivedWrench>
+FrictionMargins<typename DerivedRows::Scalar> friction_margins(const Eigen::MatrixBase<DerivedRows>& rows,
+                                                               const Eigen::MatrixBase<DerivedBounds>& bounds,
+                                                               const Eigen::MatrixBase<DerivedWrench>& wrench) noexcept
+{
+    using Scalar = typename DerivedRows::Scalar;
+    EIGEN_STATIC_ASSERT_VECTOR_SPECIFIC_SIZE(DerivedWrench, 6);
+    COOPDYN_ASSERT(rows.cols() == 6 && bounds.size() == rows.rows() && rows.rows() > friction_moment_rows,
+                   "friction_margins: rows m x 6 (m = n + 7), bounds m");
+    const Vector6<Scalar> w = wrench;
+    const Index force_rows = rows.rows() - friction_moment_rows;
+    FrictionMargins<Scalar> margins{std::numeric_limits<Scalar>::infinity(), std::numeric_limits<Scalar>::infinity()};
+    for (Index k = 0; k < rows.rows(); ++k) {
+        Scalar& margin = k < force_rows ? margins.force : margins.moment;
+        margin = std::min(margin, (bounds(k) - rows.row(k).dot(w)) / rows.row(k).norm());
+    }
+    return margins;
+}
+
+/// \brief The force and moment rows' margins of one contact's wrench [f; t] in its contact frame
+/// (see the overload above; this one builds the rows on every call).
+template <typename Scalar, typename DerivedWrench>
+FrictionMargins<Scalar> friction_margins(const ContactFriction<Scalar>& friction,
+                                         const Eigen::MatrixBase<DerivedWrench>& wrench) noexcept
+{
+    constexpr int most_rows = friction_rows(max_pyramid_edges);
+    COOPDYN_ASSERT(friction.pyramid_edges >= 3 && friction.pyramid_edges <= max_pyramid_edges,
+                   "friction_margins: pyramid_edges out of range");
+    const Index count = friction_rows(friction.pyramid_edges);
+    Eigen::Matrix<Scalar, Eigen::Dynamic, 6, 0, most_rows, 6> rows(count, 6);
+    Eigen::Matrix<Scalar, Eigen::Dynamic, 1, 0, most_rows, 1> bounds(count);
+    contact_frame_friction_rows(friction, rows, bounds);
+    return friction_margins(rows, bounds, wrench);
+}
+
 /// \brief The friction margin of one contact: the smallest slack of its rows, each divided by the
 /// row's norm, min_k (b_k - a_k^T w) / |a_k|, for the wrench w = [f; t] in the contact frame {c_i}.
 /// It is the distance from w to the nearest constraint boundary (in newtons for the force rows,
-/// newton-metres for the moment rows): positive inside, zero on the boundary, negative when a
-/// constraint is violated (the grasp would slip, twist or roll there). noexcept; no allocation
-/// (friction.pyramid_edges <= max_pyramid_edges). It builds the rows on every call (n sines and
+/// newton-metres for the moment rows; friction_margins reports the two separately): positive
+/// inside, zero on the boundary, negative when a constraint is violated (the grasp would slip,
+/// twist or roll there). noexcept; no allocation (friction.pyramid_edges <= max_pyramid_edges). It builds the rows on every call (n sines and
 /// cosines); the overload on rows and bounds reuses them.
 template <typename Scalar, typename DerivedWrench>
 Scalar friction_margin(const ContactFriction<Scalar>& friction, const Eigen::MatrixBase<DerivedWrench>& wrench) noexcept
