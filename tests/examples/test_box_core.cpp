@@ -77,6 +77,50 @@ TEST(BoxScenarioLoader, ValuesOutOfTheCommandLinesRangeAreRefused)
     EXPECT_EQ(scenario.duration, 1.0);
 }
 
+TEST(BoxScenarioLoader, ObjectivePresetsAndWeights)
+{
+    const std::string hold = example_common::read_text_file(std::string(COOPDYN_BOX_DIR) + "/scenarios/hold.json");
+    // The shipped scenario's objective: the preset and its moment weight written out.
+    const std::string shipped = "\"objective\": \"least_torque_centred\",\n    \"moment_weight\": 10000.0";
+    ASSERT_NE(hold.find(shipped), std::string::npos);
+    const auto edited = [&](const std::string& objective) {
+        std::string text = hold;
+        return text.replace(text.find(shipped), shipped.size(), objective);
+    };
+    // Each preset gives the library's weights (docs/control.md, "The least squeeze").
+    using Objective = coopdyn::SqueezeObjective<double>;
+    const std::pair<const char*, Objective> presets[] = {{"least_squeeze", Objective::least_squeeze()},
+                                                         {"least_torque_centred", Objective::least_torque_centred()},
+                                                         {"paper", Objective::paper()}};
+    for (const auto& [name, expected] : presets) {
+        const BoxScenario scenario =
+            parse_box_scenario(edited("\"objective\": \"" + std::string(name) + "\""), "preset.json");
+        EXPECT_EQ(scenario.controller.objective.internal_weight, expected.internal_weight) << name;
+        EXPECT_EQ(scenario.controller.objective.torque_weight, expected.torque_weight) << name;
+        EXPECT_EQ(scenario.controller.objective.moment_weight, expected.moment_weight) << name;
+        EXPECT_EQ(scenario.controller.objective.squeeze_weight, expected.squeeze_weight) << name;
+    }
+    // A weight given after the preset replaces the preset's.
+    const BoxScenario weighted =
+        parse_box_scenario(edited("\"objective\": \"paper\", \"moment_weight\": 50"), "weighted.json");
+    EXPECT_EQ(weighted.controller.objective.moment_weight, 50.0);
+    EXPECT_EQ(weighted.controller.objective.torque_weight, Objective::paper().torque_weight);
+    // An unknown preset and an objective without a positive definite term are refused, naming the field.
+    const auto refusal = [&](const std::string& objective) -> std::string {
+        try {
+            parse_box_scenario(edited(objective), "edited.json");
+        } catch (const ScenarioError& error) {
+            return error.what();
+        }
+        return "accepted";
+    };
+    EXPECT_EQ(refusal("\"objective\": \"least_force\""),
+              "edited.json: controller.objective: must be one of least_squeeze, least_torque_centred, paper, got "
+              "\"least_force\"");
+    EXPECT_NE(refusal("\"objective\": \"least_squeeze\", \"internal_weight\": 0").find("controller.squeeze_weight"),
+              std::string::npos);
+}
+
 TEST(BoxExperiment, UnitRowsGiveTheLibrarysMargin)
 {
     // FrictionRows' margin (rows scaled to unit length once) against coopdyn::friction_margin
