@@ -16,8 +16,9 @@
 // at construction): JointSpaceGrasp works arm by arm. A step allocates (the RK4 stages' dynamic
 // vectors): it is the simulated world, not the controller, whose tick does not. Each step runs
 // MuJoCo's smooth stages (kinematics, M, velocities, h; no collision, no constraint solver) four
-// times; the real-time factor is 19-32 on the shipped scenes (docs/performance.md, "Scenes of any
-// arms"; 5-7 with the four mj_forward calls it made before). This header belongs to the examples.
+// times; the hold's real-time factor is 15-29 on the shipped scenes (CPU time, docs/performance.md,
+// "Scenes of any arms"; 5-8 with the four mj_forward calls it made before). This header belongs to
+// the examples.
 #pragma once
 
 #include "scene_world.hpp"
