@@ -14,9 +14,11 @@
 //
 // Needs arms that share no joint, their joints contiguous in q and in the contacts' order (checked
 // at construction): JointSpaceGrasp works arm by arm. A step allocates (the RK4 stages' dynamic
-// vectors): it is the simulated world, not the controller, whose tick does not. Each step costs four
-// mj_forward calls (the real-time factor is 5-6 on the shipped scenes, MuJoCo's plant 10-25). This
-// header belongs to the examples.
+// vectors): it is the simulated world, not the controller, whose tick does not. Each step runs
+// MuJoCo's smooth stages (kinematics, M, velocities, h; no collision, no constraint solver) four
+// times; the hold's real-time factor is 15-29 on the shipped scenes (CPU time, docs/performance.md,
+// "Scenes of any arms"; 5-8 with the four mj_forward calls it made before). This header belongs to
+// the examples.
 #pragma once
 
 #include "scene_world.hpp"
@@ -185,8 +187,19 @@ private:
             scratch_->qpos[arms.qpos_address(j)] = position(j);
             scratch_->qvel[arms.dof_address(j)] = velocity(j);
         }
-        mj_forward(world_.model(), scratch_.get());
-        arms.read(world_.model(), scratch_.get(), input_);
+        // Only the stages the adapter reads (docs/adapters.md, "What read reads"): positions, the
+        // composite inertias and M, velocities and cdof_dot, h. Not mj_forward: the scratch data
+        // keeps the object at its start pose, so MuJoCo would also detect the palms' contacts and
+        // run its constraint solver at every RK4 stage, 84 % of the plant's instructions
+        // (docs/performance.md, "Scenes of any arms").
+        const mjModel* model = world_.model();
+        mjData* data = scratch_.get();
+        mj_kinematics(model, data);
+        mj_comPos(model, data);
+        mj_crb(model, data);
+        mj_comVel(model, data);
+        mj_rne(model, data, 0, data->qfrc_bias);
+        arms.read(model, data, input_);
     }
 
     /// The weld at (position, velocity) with the terms in input_: stage_acceleration_ = [qdd; a;
