@@ -81,11 +81,18 @@ bool reference_qp(const MatrixXd& H, const VectorXd& g, const MatrixXd& A, const
     const MatrixXd P = A * H_inv_At;        // the dual's Hessian
     const VectorXd q = d + A * H_inv_g;      // the dual's linear term
     VectorXd lambda = VectorXd::Zero(A.rows());
+    // Sweeps until a whole sweep changes no multiplier by more than rounding (at most 20000).
     for (int sweep = 0; sweep < 20000; ++sweep) {
+        double change = 0;
         for (Index k = 0; k < A.rows(); ++k) {
             if (P(k, k) > 0) {
-                lambda(k) = std::max(0.0, lambda(k) - (P.row(k).dot(lambda) + q(k)) / P(k, k));
+                const double next = std::max(0.0, lambda(k) - (P.row(k).dot(lambda) + q(k)) / P(k, k));
+                change = std::max(change, std::abs(next - lambda(k)));
+                lambda(k) = next;
             }
+        }
+        if (change <= 1e-17 * (1 + lambda.cwiseAbs().maxCoeff())) {
+            break;
         }
     }
     const VectorXd dual_y = -(H_inv_g + H_inv_At * lambda);
@@ -117,11 +124,16 @@ bool reference_qp(const MatrixXd& H, const VectorXd& g, const MatrixXd& A, const
         VectorXd multipliers = VectorXd::Zero(m);
         VectorXd residual = -target;
         for (int sweep = 0; sweep < 20000 && m > 0; ++sweep) {
+            double change = 0;
             for (Index j = 0; j < m; ++j) {
                 const double norm2 = A_W.row(j).squaredNorm();
                 const double next = std::max(0.0, multipliers(j) - A_W.row(j).dot(residual) / norm2);
                 residual += (next - multipliers(j)) * A_W.row(j).transpose();
+                change = std::max(change, std::abs(next - multipliers(j)));
                 multipliers(j) = next;
+            }
+            if (change <= 1e-17 * (1 + multipliers.cwiseAbs().maxCoeff())) {
+                break;
             }
         }
         const double violation = (A * y - d).maxCoeff();
