@@ -27,14 +27,8 @@
 
 namespace box_example {
 
-struct ModelDeleter {
-    void operator()(mjModel* model) const noexcept { mj_deleteModel(model); }
-};
-struct DataDeleter {
-    void operator()(mjData* data) const noexcept { mj_deleteData(data); }
-};
-using ModelPointer = std::unique_ptr<mjModel, ModelDeleter>;
-using DataPointer = std::unique_ptr<mjData, DataDeleter>;
+using ModelPointer = coopdyn::MujocoModelPointer;  // the adapter's owners (adapters/mujoco_model.hpp)
+using DataPointer = coopdyn::MujocoDataPointer;
 
 /// The MJCF model with the ids of everything the experiments use, checked once at load.
 class DualArmBoxModel {

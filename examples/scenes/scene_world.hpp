@@ -23,14 +23,8 @@
 
 namespace scenes {
 
-struct ModelDeleter {
-    void operator()(mjModel* model) const noexcept { mj_deleteModel(model); }
-};
-struct DataDeleter {
-    void operator()(mjData* data) const noexcept { mj_deleteData(data); }
-};
-using ModelPointer = std::unique_ptr<mjModel, ModelDeleter>;
-using DataPointer = std::unique_ptr<mjData, DataDeleter>;
+using ModelPointer = coopdyn::MujocoModelPointer;  // the adapter's owners (adapters/mujoco_model.hpp)
+using DataPointer = coopdyn::MujocoDataPointer;
 using Arms = coopdyn::MujocoArms<Eigen::Dynamic, Eigen::Dynamic>;
 
 /// A scene's set-up problem (a name the model lacks, an IK that does not converge, ...).

@@ -19,14 +19,8 @@ namespace {
 
 using coopdyn::Index;
 
-struct ModelDeleter {
-    void operator()(mjModel* model) const noexcept { mj_deleteModel(model); }
-};
-struct DataDeleter {
-    void operator()(mjData* data) const noexcept { mj_deleteData(data); }
-};
-using ModelPointer = std::unique_ptr<mjModel, ModelDeleter>;
-using DataPointer = std::unique_ptr<mjData, DataDeleter>;
+using ModelPointer = coopdyn::MujocoModelPointer;
+using DataPointer = coopdyn::MujocoDataPointer;
 
 ModelPointer load(const std::string& path)
 {

@@ -13,10 +13,22 @@
 #include <mujoco/mujoco.h>
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace coopdyn {
+
+/// \brief Owners of MuJoCo's model and data (mj_deleteModel, mj_deleteData on destruction), for
+/// code that loads its own model: `MujocoModelPointer model(mj_loadXML(...))`.
+struct MujocoModelDeleter {
+    void operator()(mjModel* model) const noexcept { mj_deleteModel(model); }
+};
+struct MujocoDataDeleter {
+    void operator()(mjData* data) const noexcept { mj_deleteData(data); }
+};
+using MujocoModelPointer = std::unique_ptr<mjModel, MujocoModelDeleter>;
+using MujocoDataPointer = std::unique_ptr<mjData, MujocoDataDeleter>;
 
 /// \brief The object's pose as the controller's input object.pose measures it: its body's centre
 /// of mass (xipos) and its body frame's orientation (xquat), in {w}. mj_kinematics must have run.
