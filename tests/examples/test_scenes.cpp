@@ -571,7 +571,7 @@ TEST(LeastSqueezeAtRest, NormalForcesPerSceneAndObjective)
             for (Eigen::Index i = 0; i < K; ++i) {
                 EXPECT_NEAR(least.normal(i), expected(i), 1e-9 * expected(i)) << name << " palm " << i;
                 worst = std::max(worst, std::abs(least.normal(i) - expected(i)) / expected(i));
-                std::printf("| %s | %.2f kg, mu %.1f, f_min %.0f N | %lld | %.2f | %.2f | %.2f (%.2fx) | %.2f (%.2fx) |\n", name,
+                std::printf("| %s | %.2f kg, mu %.1f, f_min %.0f N | %lld | %.3f | %.3f | %.3f (%.2fx) | %.3f (%.2fx) |\n", name,
                             mass, load[1], f_min, static_cast<long long>(i), expected(i), least.normal(i), centred.normal(i),
                             centred.normal(i) / least.normal(i), paper.normal(i), paper.normal(i) / least.normal(i));
                 if (K == 2) {  // the pairs: no feasible squeeze is below the closed form
