@@ -12,7 +12,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -298,6 +300,288 @@ TEST(SceneWorld, RefusesAnObjectWithoutAFreeJoint)
     scenes::Scene scene = scenes::read_scene(scene_dir + "/ur5e_panda.json");
     scene.object_body = "panda_link3";
     EXPECT_THROW(scenes::SceneWorld{scene}, scenes::SceneError);
+}
+
+
+// ---- The least squeeze at rest on the scenes' arms (errata E13; docs/control.md, "The least squeeze") ----
+//
+// The controller models the object as massless (docs/control.md, "Inputs and sign conventions"):
+// it learns the weight only through L(7), F_x = K_d (p - p_d) at rest, as the object sags m g / K_d
+// below its desired pose (docs/scenes.md, "Holding"). So "the mass the controller knows" is set by
+// raising the desired pose m g / K_d above the object, everything else at rest: q, qdot = 0 from
+// the start, the object's twist and acceleration zero. The references are statics and the friction
+// pyramid's geometry, not the controller's code:
+// - two palms pressing along one horizontal line through the object's centre, their frames mirror
+//   images through the plane midway between them (checked): the reflection maps the grasp, its
+//   friction rows and the weight onto themselves, and the least squeeze's optimum is unique (its
+//   Hessian I + moment_weight B_m^T B_m is positive definite), so it is mirror-symmetric: each palm
+//   carries half the weight, m g / 2 up, and no tangential force across (the mirror flips it). The
+//   normal forces are equal (the normals are opposite and nothing else pushes along them), and no
+//   squeeze below max(f_min, need) satisfies friction, so that is each palm's normal force;
+// - three arms (three_arms.json: the two side palms as above and a third below the centre pushing
+//   up; the mirror plane holds it, and its pyramid is symmetric about that plane). The weight's
+//   minimum-norm split G^+ F_x is a third at each palm, straight up, no moments: it balances the
+//   weight (r_0 = -r_1, r_2 parallel to it) and lies in the range of G^T (f_i = lambda_f,
+//   t_i = 0), so the internal part of a wrench is its difference from that split. A mirror-
+//   symmetric candidate: each side palm squeezes n and carries s up, the bottom b = m g - 2 s. Its
+//   difference from the split is internal, and its square is
+//   (b - m g/3)^2 + 2 (s - m g/3)^2 + 2 n^2 = 6 (s - m g/3)^2 + 2 n^2 (no contact moments), to be
+//   least subject to n >= f_min, b >= f_min, |s| <= c n (c: the vertical force a side pyramid
+//   carries per newton of normal force). With a = m g/3, S = (m g - f_min)/2 (what each side must
+//   carry with the bottom at f_min):
+//     S <= 0 (f_min >= m g): s = S (any more push from below adds to both terms), n = max(f_min, |S|/c);
+//     S > 0: n = max(f_min, min(n*, S/c)), n* = 3 c a / (3 c^2 + 1) (the two terms balanced when
+//            friction binds), s = min(a, S, c n);
+//   the bottom presses m g - 2 s. The test asserts all three palms against it; f_min >= m g, friction
+//   binding at n = f_min, and the balanced n* > f_min all occur among its loads.
+
+using Objective = coopdyn::SqueezeObjective<double>;
+constexpr double gravity = 9.81;  // the weight the tests tell the controller of, m g
+
+/// The controller's tick at rest at the world's current state (after start()), told of `mass`
+/// through the desired pose's lift m g / K_d.
+struct Rest {
+    coopdyn::ControlStatus status = coopdyn::ControlStatus::ok;
+    coopdyn::Vector6<double> external_wrench;
+    Eigen::Matrix<double, 6, Eigen::Dynamic> wrenches;  ///< column i: palm i's [f; t] in its contact frame
+    std::vector<Eigen::Matrix3d> rotations;             ///< R_ci, {c_i} to {w}
+    double normal(Eigen::Index i) const { return wrenches(2, i); }
+};
+
+Rest rest_tick(const scenes::SceneWorld& world, const scenes::ControllerSettings& settings, double mass,
+               const Objective& objective)
+{
+    coopdyn::ControllerParameters<double> parameters = world.controller_parameters(settings);
+    parameters.objective = objective;
+    const coopdyn::ControllerModel<double> model(parameters);
+    coopdyn::ControllerData<double> data(model);
+    coopdyn::ControllerInput<double> input(model);
+    world.arms().read(world.model(), world.data(), input);
+    input.object = coopdyn::mujoco_object_state(world.model(), world.data(), world.object_body());
+    input.posture = world.posture();
+    input.desired_pose = input.object.pose;
+    input.desired_pose.position.z() += mass * gravity / settings.translational_stiffness;
+    coopdyn::controller_tick(model, data, input);
+    Rest rest;
+    rest.status = data.status;
+    rest.external_wrench = data.external_wrench;
+    rest.wrenches = data.contact_frame_wrenches;
+    for (Eigen::Index i = 0; i < model.arms(); ++i) {
+        rest.rotations.emplace_back(data.contact_rotations.middleCols<3>(3 * i));
+    }
+    return rest;
+}
+
+/// The normal force that an n-edge pyramid needs to carry the tangential part of `force` (the
+/// palm's force on the object, {w}): facet k, outward normal at 2 pi (k + 1/2) / n in the contact
+/// plane, bounds the tangential force's component along it by mu cos(pi/n) f_z (docs/control.md,
+/// "Friction constraints of one contact"; the pyramid inscribed in the cone, L(18)).
+double pyramid_need(const Eigen::Matrix3d& contact_rotation, const Eigen::Vector3d& force,
+                    const coopdyn::ContactFriction<double>& friction)
+{
+    const double pi = 3.14159265358979323846;
+    const Eigen::Vector3d local = contact_rotation.transpose() * force;
+    const int n = friction.pyramid_edges;
+    double reach = 0.0;
+    for (int k = 0; k < n; ++k) {
+        const double angle = 2.0 * pi * (k + 0.5) / n;
+        reach = std::max(reach, local.x() * std::cos(angle) + local.y() * std::sin(angle));
+    }
+    return reach / (friction.friction_coefficient * std::cos(pi / n));
+}
+
+coopdyn::ContactFriction<double> palm_friction(const scenes::ControllerSettings& settings)
+{
+    coopdyn::ContactFriction<double> friction;  // as SceneWorld::controller_parameters builds it
+    friction.friction_coefficient = settings.friction;
+    friction.minimum_normal_force = settings.minimum_normal_force;
+    return friction;
+}
+
+/// The symmetry the closed forms rest on, from the world's state (not the controller's): palms 0
+/// and 1 press along one horizontal line through the object's centre of mass, and palm 1's
+/// frame is palm 0's mirrored through the plane midway between them (x reflected, y reflected and
+/// reversed: the reflection turns a right-handed frame into a left-handed one).
+void expect_mirror_pair(const scenes::SceneWorld& world)
+{
+    const Eigen::Vector3d centre = coopdyn::mujoco_object_pose(world.model(), world.data(), world.object_body()).position;
+    const Eigen::Vector3d r0 = world.arms().contact_position(world.data(), 0) - centre;
+    const Eigen::Vector3d r1 = world.arms().contact_position(world.data(), 1) - centre;
+    const Eigen::Matrix3d R0 = world.arms().contact_rotation(world.data(), 0);
+    const Eigen::Matrix3d R1 = world.arms().contact_rotation(world.data(), 1);
+    const Eigen::Vector3d n = R0.col(2);
+    const Eigen::Matrix3d mirror = Eigen::Matrix3d::Identity() - 2.0 * n * n.transpose();
+    EXPECT_LT((r0 + r1).norm(), 1e-9);
+    EXPECT_LT(r0.cross(n).norm(), 1e-9);
+    EXPECT_LT(std::abs(n.z()), 1e-9);
+    EXPECT_LT((R1.col(2) + n).norm(), 1e-9);
+    EXPECT_LT((R1.col(0) - mirror * R0.col(0)).norm(), 1e-9);
+    EXPECT_LT((R1.col(1) + mirror * R0.col(1)).norm(), 1e-9);
+}
+
+scenes::SceneWorld world_at(const std::string& name, const coopdyn::Pose<double>* object = nullptr)
+{
+    scenes::Scene scene = scenes::read_scene(scene_dir + "/" + name + ".json");
+    if (object != nullptr) {
+        scene.object_pose = *object;
+    }
+    scenes::SceneWorld world(scene);
+    const scenes::StartReport start = world.start();  // throws when the IK does not converge
+    EXPECT_LT(start.contact_position_error, 1e-9) << name;
+    EXPECT_LT(start.contact_orientation_error, 1e-9) << name;
+    return world;
+}
+
+// Issue 21: the UR5e + Panda pair (6 + 7 joints, arms of different weights) at rest, the object at
+// four poses reached by the IK (the start; moved and turned about the vertical; turned about the
+// line between the palms, which turns the load in each palm's plane: pi/8 puts it on a facet's
+// normal, the start on an edge, 0.3 rad between), six loads with f_min or friction binding.
+TEST(LeastSqueezeAtRest, UrPandaPalmsPressMaxOfFminAndWhatFrictionNeeds)
+{
+    const double pi = 3.14159265358979323846;
+    const auto turned = [](double yaw, double about_grasp_line) {
+        return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                                  Eigen::AngleAxisd(about_grasp_line, Eigen::Vector3d::UnitY()));
+    };
+    const coopdyn::Pose<double> poses[] = {{Eigen::Vector3d(0.5, 0.0, 0.5), turned(0.0, 0.0)},
+                                           {Eigen::Vector3d(0.45, 0.05, 0.6), turned(0.25, pi / 8)},
+                                           {Eigen::Vector3d(0.55, -0.05, 0.42), turned(0.0, 0.3)},
+                                           {Eigen::Vector3d(0.5, 0.0, 0.55), turned(-0.2, -pi / 8)}};
+    struct Load {
+        double mass, mu, f_min;
+    };
+    // f_min binds in the first, second and fifth (need m g / (2 mu) = 12.3, 19.6 and 9.8 N along an
+    // edge, 8 % more along a facet's normal, against 30, 30 and 15 N), friction in the others (73.6,
+    // 19.6 and 24.5 N against 30, 5 and 20 N). mu 0.2 and f_min 30 N are the scenes' settings.
+    const Load loads[] = {{0.5, 0.2, 30.0}, {0.8, 0.2, 30.0}, {3.0, 0.2, 30.0},
+                          {2.0, 0.5, 5.0},  {1.0, 0.5, 15.0}, {4.0, 0.8, 20.0}};
+    double worst = 0.0;
+    // Per load, the range of paper() / least and least_torque_centred() / least over poses and palms.
+    std::array<std::array<double, 4>, 6> ratios;
+    ratios.fill({1e300, 0.0, 1e300, 0.0});
+    int friction_bound = 0, minimum_bound = 0;
+    for (const coopdyn::Pose<double>& pose : poses) {
+        const scenes::SceneWorld world = world_at("ur5e_panda", &pose);
+        expect_mirror_pair(world);
+        for (std::size_t l = 0; l < ratios.size(); ++l) {
+            const Load& load = loads[l];
+            scenes::ControllerSettings settings;
+            settings.friction = load.mu;
+            settings.minimum_normal_force = load.f_min;
+            const coopdyn::ContactFriction<double> friction = palm_friction(settings);
+            const Rest least = rest_tick(world, settings, load.mass, Objective::least_squeeze());
+            const Rest paper = rest_tick(world, settings, load.mass, Objective::paper());
+            const Rest centred = rest_tick(world, settings, load.mass, Objective::least_torque_centred());
+            ASSERT_EQ(least.status, coopdyn::ControlStatus::ok);
+            ASSERT_EQ(paper.status, coopdyn::ControlStatus::ok);
+            ASSERT_EQ(centred.status, coopdyn::ControlStatus::ok);
+            // L(7) at rest: F_x is the weight the test told of.
+            ASSERT_LT((least.external_wrench - coopdyn::Vector6<double>(0, 0, -load.mass * gravity, 0, 0, 0)).norm(),
+                      1e-9 * load.mass);
+            for (Eigen::Index i = 0; i < 2; ++i) {
+                const double need =
+                    pyramid_need(least.rotations[static_cast<std::size_t>(i)], Eigen::Vector3d(0, 0, load.mass * gravity / 2), friction);
+                const double expected = std::max(load.f_min, need);
+                worst = std::max(worst, std::abs(least.normal(i) - expected) / expected);
+                // 1 % is the issue's requirement; measured 1.1e-11 (the IK's 1e-10 leaves the grasp
+                // that far from the mirror symmetry).
+                EXPECT_NEAR(least.normal(i), expected, 1e-9 * expected)
+                    << "mass " << load.mass << " mu " << load.mu << " f_min " << load.f_min << " object at "
+                    << pose.position.transpose() << " palm " << i;
+                (need > load.f_min ? friction_bound : minimum_bound) += 1;
+                // The other objectives cannot press less: in any feasible wrench the two normal
+                // forces are equal and the vertical loads sum to m g, and the pyramid's need is convex
+                // and even across the mirror, so it is at least that of m g / 2 each. They press more
+                // where the internal wrench they keep from w_0 exceeds what friction needs.
+                EXPECT_GE(paper.normal(i), least.normal(i) * (1 - 1e-9)) << "palm " << i;
+                EXPECT_GE(centred.normal(i), least.normal(i) * (1 - 1e-9)) << "palm " << i;
+                std::array<double, 4>& ratio = ratios[l];
+                ratio[0] = std::min(ratio[0], paper.normal(i) / least.normal(i));
+                ratio[1] = std::max(ratio[1], paper.normal(i) / least.normal(i));
+                ratio[2] = std::min(ratio[2], centred.normal(i) / least.normal(i));
+                ratio[3] = std::max(ratio[3], centred.normal(i) / least.normal(i));
+            }
+        }
+    }
+    std::printf("[ UR5e + Panda at rest, least squeeze ] %d palms where friction binds, %d where f_min does: normal "
+                "force = max(f_min, need) to %.1e (relative)\n",
+                friction_bound, minimum_bound, worst);
+    for (std::size_t l = 0; l < ratios.size(); ++l) {
+        std::printf("  %.1f kg, mu %.1f, f_min %2.0f N: paper() presses %.2f-%.2fx the least squeeze, "
+                    "least_torque_centred() %.2f-%.2fx\n",
+                    loads[l].mass, loads[l].mu, loads[l].f_min, ratios[l][0], ratios[l][1], ratios[l][2], ratios[l][3]);
+    }
+    EXPECT_GT(friction_bound, 0);
+    EXPECT_GT(minimum_bound, 0);
+}
+
+// Issue 21: each shipped scene at its start, the normal force per palm under each preset next to
+// the closed form (docs/control.md, "The least squeeze", "On the scenes' arms", is this test's
+// table). Loads: the scene's own object mass (from its MJCF) with the scenes' settings (mu 0.2,
+// f_min 30 N); 3 kg with f_min 10 N (friction binds); the own mass with the box test's mu 0.5 and
+// f_min 2 N, where the internal wrench w_0 holds from the arms' weight is more than the load needs.
+TEST(LeastSqueezeAtRest, NormalForcesPerSceneAndObjective)
+{
+    double worst = 0.0;
+    std::printf("| scene | load | palm | closed form | `least_squeeze()` | `least_torque_centred()` | `paper()` |\n"
+                "|---|---|---|---|---|---|---|\n");
+    for (const char* name : {"lwr4_pair", "ur5e_panda", "three_arms"}) {
+        const scenes::SceneWorld world = world_at(name);
+        const double own_mass = world.model()->body_mass[world.object_body()];
+        expect_mirror_pair(world);
+        const Eigen::Index K = world.arms().arms();
+        // {mass, mu, f_min}
+        for (const std::array<double, 3>& load : {std::array<double, 3>{own_mass, 0.2, 30.0}, std::array<double, 3>{3.0, 0.2, 10.0},
+                                                  std::array<double, 3>{own_mass, 0.5, 2.0}}) {
+            const double mass = load[0];
+            const double weight = mass * gravity;
+            const double f_min = load[2];
+            scenes::ControllerSettings settings;
+            settings.friction = load[1];
+            settings.minimum_normal_force = f_min;
+            const coopdyn::ContactFriction<double> friction = palm_friction(settings);
+            const Rest least = rest_tick(world, settings, mass, Objective::least_squeeze());
+            const Rest centred = rest_tick(world, settings, mass, Objective::least_torque_centred());
+            const Rest paper = rest_tick(world, settings, mass, Objective::paper());
+            ASSERT_EQ(least.status, coopdyn::ControlStatus::ok);
+            ASSERT_EQ(centred.status, coopdyn::ControlStatus::ok);
+            ASSERT_EQ(paper.status, coopdyn::ControlStatus::ok);
+            Eigen::VectorXd expected(K);
+            if (K == 2) {
+                for (Eigen::Index i = 0; i < 2; ++i) {
+                    expected(i) = std::max(f_min, pyramid_need(least.rotations[static_cast<std::size_t>(i)],
+                                                                 Eigen::Vector3d(0, 0, weight / 2), friction));
+                }
+            } else {
+                EXPECT_LT((least.rotations[2].col(2) - Eigen::Vector3d::UnitZ()).norm(), 1e-9);  // pushes up
+                const double up = 1.0 / pyramid_need(least.rotations[0], Eigen::Vector3d::UnitZ(), friction);  // c
+                const double down = 1.0 / pyramid_need(least.rotations[0], -Eigen::Vector3d::UnitZ(), friction);
+                const double share = weight / 3;
+                const double most = (weight - f_min) / 2;
+                double squeeze = 0.0, carried = 0.0;
+                if (most <= 0.0) {
+                    carried = most;
+                    squeeze = std::max(f_min, -most / down);
+                } else {
+                    squeeze = std::max(f_min, std::min(3 * up * share / (3 * up * up + 1), most / up));
+                    carried = std::min({share, most, up * squeeze});
+                }
+                expected << squeeze, squeeze, weight - 2 * carried;
+            }
+            for (Eigen::Index i = 0; i < K; ++i) {
+                EXPECT_NEAR(least.normal(i), expected(i), 1e-9 * expected(i)) << name << " palm " << i;
+                worst = std::max(worst, std::abs(least.normal(i) - expected(i)) / expected(i));
+                std::printf("| %s | %.2f kg, mu %.1f, f_min %.0f N | %lld | %.3f | %.3f | %.3f (%.2fx) | %.3f (%.2fx) |\n", name,
+                            mass, load[1], f_min, static_cast<long long>(i), expected(i), least.normal(i), centred.normal(i),
+                            centred.normal(i) / least.normal(i), paper.normal(i), paper.normal(i) / least.normal(i));
+                if (K == 2) {  // the pairs: no feasible squeeze is below the closed form
+                    EXPECT_LE(least.normal(i), centred.normal(i) * (1 + 1e-9)) << name << " palm " << i;
+                    EXPECT_LE(least.normal(i), paper.normal(i) * (1 + 1e-9)) << name << " palm " << i;
+                }
+            }
+        }
+    }
+    std::printf("least squeeze against the closed forms: %.1e (relative)\n", worst);
 }
 
 }  // namespace
