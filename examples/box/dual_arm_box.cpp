@@ -176,14 +176,20 @@ void print_legend(const std::vector<BoxScenario>& scenarios, const std::vector<s
     }
 }
 
-int run(const CommandLine& command, std::vector<BoxScenario> scenarios)
+/// Each scenario's scene, read before anything runs (or is written): a bad scene file fails at once.
+std::vector<std::optional<scenes::Scene>> read_scenes(const std::vector<BoxScenario>& scenarios)
 {
-    // Every scene is read before anything runs: a bad scene file fails at once.
     std::vector<std::optional<scenes::Scene>> scene_of;
     for (const BoxScenario& scenario : scenarios) {
         scene_of.push_back(scenario.scene ? std::optional<scenes::Scene>(scenes::read_scene(*scenario.scene))
                                           : std::nullopt);
     }
+    return scene_of;
+}
+
+int run(const CommandLine& command, std::vector<BoxScenario> scenarios,
+        const std::vector<std::optional<scenes::Scene>>& scene_of)
+{
     std::unique_ptr<DualArmBoxModel> world;  // --output was created and checked by main()
     Runs runs{example_common::Progress(command.progress), {}, {}};
     for (std::size_t k = 0; k < scenarios.size(); ++k) {
@@ -306,8 +312,9 @@ int main(int argc, char** argv)
                 }
             }
         }
+        const std::vector<std::optional<scenes::Scene>> scene_of = read_scenes(scenarios);
         example_common::prepare_output_folder(command.output);
-        return run(command, std::move(scenarios));
+        return run(command, std::move(scenarios), scene_of);
     } catch (const FileError& error) {
         std::fprintf(stderr, "dual_arm_box: %s\n", error.what());
         return exit_file;

@@ -436,6 +436,14 @@ TEST(DualArmBoxInput, MissingOrUnwritableFilesAreExitCodeFour)
     EXPECT_EQ(missing.exit_code, 4) << missing.output;
     EXPECT_TRUE(example_tests::is_one_line(missing.output, "dual_arm_box: cannot read nope.json: No such file or directory"))
         << missing.output;
+    // A scenario naming a scene file that is not there: the same, before anything runs.
+    const std::string hold = example_tests::read_file(box_dir + "/scenarios/hold.json");
+    ASSERT_TRUE(example_tests::write_edited(hold, "\"name\": \"hold\"", "\"name\": \"hold\", \"scene\": \"nope_scene.json\"",
+                                            directory / "on_nothing.json"));
+    const ProgramRun scene = example_tests::run_program(program, directory, "--scenario on_nothing.json --no-plots --quiet");
+    EXPECT_EQ(scene.exit_code, 4) << scene.output;
+    EXPECT_TRUE(contains(scene.output, "cannot read nope_scene.json")) << scene.output;
+    EXPECT_FALSE(fs::exists(directory / "out")) << scene.output;
     const ProgramRun output = example_tests::run_program(
         program, directory, "--experiment hold --plant rigid --no-plots --quiet --output /proc/nope");
     EXPECT_EQ(output.exit_code, 4) << output.output;
