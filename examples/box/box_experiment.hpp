@@ -129,7 +129,8 @@ struct FrictionRows {
 constexpr int max_scene_palms = 4;
 constexpr int max_scene_joints = 32;
 /// Palm slots of a run with K palms (K, or max_scene_palms for Eigen::Dynamic).
-template <int K> constexpr std::size_t palm_capacity = K == Eigen::Dynamic ? std::size_t{max_scene_palms} : std::size_t(K);
+template <int K>
+constexpr std::size_t palm_capacity = K == Eigen::Dynamic ? std::size_t{max_scene_palms} : std::size_t(K);
 /// A joint vector of a run with Q joints: JointVector for the LWR 4 pair, bounded Dynamic for scenes.
 template <int Q>
 using JointVectorOf = Eigen::Matrix<double, Q, 1, 0, (Q == Eigen::Dynamic ? max_scene_joints : Q), 1>;

@@ -78,8 +78,8 @@ BoxSummary summarise(const BoxScenario& scenario, const std::string& plant, cons
             s.min_true_force_margin = std::min(s.min_true_force_margin, row.measured_margins[i].force);
             s.min_true_moment_margin = std::min(s.min_true_moment_margin, row.measured_margins[i].moment);
             if (predicted) {
-                s.max_force_error =
-                    std::max(s.max_force_error, (row.predicted[i].template head<3>() - row.measured[i].template head<3>()).norm());
+                const Eigen::Vector3d error = row.predicted[i].template head<3>() - row.measured[i].template head<3>();
+                s.max_force_error = std::max(s.max_force_error, error.norm());
             }
             s.needed_normal =
                 std::max(s.needed_normal, row.measured[i].template head<2>().norm() / scenario.plant_friction.sliding);

@@ -171,7 +171,8 @@ void print_legend(const std::vector<BoxScenario>& scenarios, const std::vector<s
         const scenes::Scene& scene = *scene_of.front();
         std::printf("dual_arm_box: scene %s: %ld arms, %ld joints squeeze a %.1f kg object (unknown to the "
                     "controller), Lin et al. section IV\n",
-                    scene.source.c_str(), static_cast<long>(scene.arms()), static_cast<long>(scene.joints()),
+                    fs::path(scene.source).filename().string().c_str(), static_cast<long>(scene.arms()),
+                    static_cast<long>(scene.joints()),
                     scenarios.front().box_mass);
     }
 }
@@ -238,9 +239,9 @@ int main(int argc, char** argv)
 {
     CommandLine command;
     CLI::App app{"dual_arm_box: the dual-arm box experiments of Lin et al. (section IV, Figs. 5-8) in simulation.\n"
-                 "Two 7-joint arms hold a box by friction with coopdyn's projected inverse-dynamics controller\n"
-                 "while a person pushes it, loads it or grabs it. Writes CSV logs, gnuplot scripts and PNG plots\n"
-                 "to --output. Docs: docs/dual-arm-box.md",
+                 "Two 7-joint arms (or any scene's arms: --scene, a scenario's \"scene\") hold a box by friction\n"
+                 "with coopdyn's projected inverse-dynamics controller while a person pushes it, loads it or grabs\n"
+                 "it. Writes CSV logs, gnuplot scripts and PNG plots to --output. Docs: docs/dual-arm-box.md",
                  "dual_arm_box"};
     app.option_defaults()->always_capture_default();
     app.add_option("--experiment", command.experiments, "Shipped experiments to run: hold, push, add_mass, circle or all")

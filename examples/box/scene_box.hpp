@@ -126,8 +126,9 @@ inline ExperimentSetup make_scene_setup(const scenes::SceneWorld& world, const B
     }
     ExperimentSetup setup;
     setup.parameters.joints = Q;
-    setup.parameters.contacts =
-        world.arms().contact_points(world.model(), world.data(), world.scene().object_body, coopdyn::ContactFriction<double>{});
+    // The contacts' friction is the scenario's (apply_controller_settings), not the adapter's.
+    setup.parameters.contacts = world.arms().contact_points(world.model(), world.data(), world.scene().object_body,
+                                                            coopdyn::ContactFriction<double>{});
     apply_controller_settings(scenario.controller, setup.parameters);
     setup.posture = world.posture();
     setup.hold = coopdyn::mujoco_object_pose(world.model(), world.data(), world.object_body());

@@ -134,7 +134,8 @@ inline Scene parse_scene(const std::string& text, const std::string& source, con
 {
     return example_common::read_document(text, source, [&](const detail::JsonReader& reader, const detail::json& document) {
         using detail::join_path;
-        reader.only_keys(document, "", {"model", "joints", "contact_sites", "object", "start", "posture", "torque_limits"});
+        reader.only_keys(document, "",
+                         {"model", "joints", "contact_sites", "object", "start", "posture", "torque_limits"});
         Scene scene;
         scene.source = source;
         const std::string model = reader.string(reader.required(document, "", "model"), "model");

@@ -166,7 +166,8 @@ private:
         const double sign = palm_first ? 1.0 : -1.0;
         const Eigen::Vector3d force = sign * (frame.transpose() * Eigen::Vector3d(local[0], local[1], local[2]));
         const Eigen::Vector3d torsion = sign * local[3] * frame.row(0).transpose();
-        const Eigen::Vector3d arm = Eigen::Vector3d(contact.pos[0], contact.pos[1], contact.pos[2]) - palm_position_[palm];
+        const Eigen::Vector3d arm =
+            Eigen::Vector3d(contact.pos[0], contact.pos[1], contact.pos[2]) - palm_position_[palm];
         measured_[palm].head<3>() += force;
         measured_[palm].tail<3>() += arm.cross(force) + torsion;
     }

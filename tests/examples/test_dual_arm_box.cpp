@@ -284,7 +284,8 @@ protected:
             for (std::size_t row = 0; row < table.rows(); ++row) {
                 const double t = table.number(row, "time");
                 if (t < 0.8) {
-                    EXPECT_GE(table.number(row, palm + "_pred_fz"), c.minimum_normal_force - 1e-6) << palm << " t " << t;
+                    EXPECT_GE(table.number(row, palm + "_pred_fz"), c.minimum_normal_force - 1e-6)
+                        << palm << " t " << t;
                 }
                 if (t >= 0.4 && t < 0.8) {  // settled
                     predicted += table.number(row, palm + "_pred_fz");
@@ -332,13 +333,14 @@ TEST(DualArmBoxInput, TheLwr4PairSceneGivesTheFixedSizeRun)
     const fs::path directory = example_tests::fresh_directory(output_root, "lwr4_pair_scene");
     for (const char* name : {"push", "add_mass"}) {
         const std::string text = example_tests::read_file(box_dir + "/scenarios/" + name + ".json");
-        const std::string edited = "\"scene\": \"" + box_dir + "/../scenes/lwr4_pair.json\", \"name\": \"" + name + "_scene\"";
+        const std::string edited =
+            "\"scene\": \"" + box_dir + "/../scenes/lwr4_pair.json\", \"name\": \"" + name + "_scene\"";
         ASSERT_TRUE(example_tests::write_edited(text, "\"name\": \"" + std::string(name) + "\"", edited,
                                                 directory / (std::string(name) + "_scene.json")));
     }
     const std::string common = " --plant both --duration 2.5 --no-plots --quiet --no-minimum-squeeze --output out";
-    const ProgramRun scene =
-        example_tests::run_program(program, directory, "--scenario push_scene.json --scenario add_mass_scene.json" + common);
+    const ProgramRun scene = example_tests::run_program(
+        program, directory, "--scenario push_scene.json --scenario add_mass_scene.json" + common);
     ASSERT_EQ(scene.exit_code, 0) << scene.output;
     const ProgramRun fixed = example_tests::run_program(program, directory, "--experiment push,add_mass" + common);
     ASSERT_EQ(fixed.exit_code, 0) << fixed.output;
@@ -424,7 +426,8 @@ TEST(DualArmBoxInput, HelpNamesTheShippedFilesRelativeToTheRepository)
     EXPECT_EQ(help.exit_code, 0) << help.output;
     EXPECT_TRUE(contains(help.output, "examples/box/scenarios")) << help.output;
     EXPECT_FALSE(contains(help.output, box_dir)) << help.output;
-    for (const char* option : {"--plant", "--experiment", "--scene", "--duration", "--friction", "--seed", "--output"}) {
+    for (const char* option :
+         {"--plant", "--experiment", "--scene", "--duration", "--friction", "--seed", "--output"}) {
         EXPECT_TRUE(contains(help.output, option)) << option;
     }
 }
@@ -438,9 +441,11 @@ TEST(DualArmBoxInput, MissingOrUnwritableFilesAreExitCodeFour)
         << missing.output;
     // A scenario naming a scene file that is not there: the same, before anything runs.
     const std::string hold = example_tests::read_file(box_dir + "/scenarios/hold.json");
-    ASSERT_TRUE(example_tests::write_edited(hold, "\"name\": \"hold\"", "\"name\": \"hold\", \"scene\": \"nope_scene.json\"",
+    ASSERT_TRUE(example_tests::write_edited(hold, "\"name\": \"hold\"",
+                                            "\"name\": \"hold\", \"scene\": \"nope_scene.json\"",
                                             directory / "on_nothing.json"));
-    const ProgramRun scene = example_tests::run_program(program, directory, "--scenario on_nothing.json --no-plots --quiet");
+    const ProgramRun scene =
+        example_tests::run_program(program, directory, "--scenario on_nothing.json --no-plots --quiet");
     EXPECT_EQ(scene.exit_code, 4) << scene.output;
     EXPECT_TRUE(contains(scene.output, "cannot read nope_scene.json")) << scene.output;
     EXPECT_FALSE(fs::exists(directory / "out")) << scene.output;
