@@ -27,12 +27,35 @@
 
 namespace box_example {
 
+/// The LWR 4 pair's controller at its fixed sizes (scenes run at Eigen::Dynamic: scene_box.hpp).
 using Controller = coopdyn::ControllerModel<double, palms, joints>;
 using ControllerData = coopdyn::ControllerData<double, palms, joints>;
 using ControllerInput = coopdyn::ControllerInput<double, palms, joints>;
 
-/// The controller's parameters for a scenario: each palm's contact frame in the box (z: the box's
-/// inward normal = the palm's outward normal), its friction model, the impedance and posture gains.
+/// The scenario's controller settings on parameters whose contact frames and joint count are set:
+/// each contact's friction model, the impedance and posture gains, the QP's objective. One place
+/// for the LWR 4 pair (controller_parameters) and every scene (scene_box.hpp).
+inline void apply_controller_settings(const ControllerSettings& settings,
+                                      coopdyn::ControllerParameters<double>& parameters)
+{
+    for (coopdyn::ContactPoint<double>& contact : parameters.contacts) {
+        contact.friction.friction_coefficient = settings.friction;
+        contact.friction.torsional_coefficient = settings.torsional_friction;
+        contact.friction.patch_half_length_x = settings.patch_half_size;
+        contact.friction.patch_half_length_y = settings.patch_half_size;
+        contact.friction.minimum_normal_force = settings.minimum_normal_force;
+    }
+    parameters.stiffness.diagonal() << Eigen::Vector3d::Constant(settings.translational_stiffness),
+        Eigen::Vector3d::Constant(settings.rotational_stiffness);
+    parameters.damping.diagonal() << Eigen::Vector3d::Constant(settings.translational_damping),
+        Eigen::Vector3d::Constant(settings.rotational_damping);
+    parameters.posture_stiffness = Eigen::VectorXd::Constant(parameters.joints, settings.posture_stiffness);
+    parameters.posture_damping = Eigen::VectorXd::Constant(parameters.joints, settings.posture_damping);
+    parameters.objective = settings.objective;
+}
+
+/// The controller's parameters for a scenario on the LWR 4 pair: each palm's contact frame in the
+/// box (z: the box's inward normal = the palm's outward normal), then apply_controller_settings.
 inline coopdyn::ControllerParameters<double> controller_parameters(const ControllerSettings& settings,
                                                                    const Grasp& grasp)
 {
@@ -43,20 +66,9 @@ inline coopdyn::ControllerParameters<double> controller_parameters(const Control
         coopdyn::ContactPoint<double> contact;
         contact.frame.position = box_rotation.transpose() * (grasp.palm_position[i] - grasp.box.position);
         contact.frame.orientation = Eigen::Quaterniond(box_rotation.transpose() * grasp.palm_rotation[i]).normalized();
-        contact.friction.friction_coefficient = settings.friction;
-        contact.friction.torsional_coefficient = settings.torsional_friction;
-        contact.friction.patch_half_length_x = settings.patch_half_size;
-        contact.friction.patch_half_length_y = settings.patch_half_size;
-        contact.friction.minimum_normal_force = settings.minimum_normal_force;
         parameters.contacts.push_back(contact);
     }
-    parameters.stiffness.diagonal() << Eigen::Vector3d::Constant(settings.translational_stiffness),
-        Eigen::Vector3d::Constant(settings.rotational_stiffness);
-    parameters.damping.diagonal() << Eigen::Vector3d::Constant(settings.translational_damping),
-        Eigen::Vector3d::Constant(settings.rotational_damping);
-    parameters.posture_stiffness = Eigen::VectorXd::Constant(joints, settings.posture_stiffness);
-    parameters.posture_damping = Eigen::VectorXd::Constant(joints, settings.posture_damping);
-    parameters.objective = settings.objective;
+    apply_controller_settings(settings, parameters);
     return parameters;
 }
 
@@ -111,8 +123,21 @@ struct FrictionRows {
     }
 };
 
-/// One tick of the log (docs/dual-arm-box.md, "The CSV columns").
-struct TickLog {
+/// Most palms (K) and joints (Q) a scene's run can log: the Dynamic-size runs (scene_box.hpp)
+/// keep their per-palm and per-joint columns in fixed-capacity storage, so that logging a tick
+/// allocates nothing, as with the LWR 4 pair's fixed sizes. The shipped scenes have K <= 3, Q <= 20.
+constexpr int max_scene_palms = 4;
+constexpr int max_scene_joints = 32;
+/// Palm slots of a run with K palms (K, or max_scene_palms for Eigen::Dynamic).
+template <int K>
+constexpr std::size_t palm_capacity = K == Eigen::Dynamic ? std::size_t{max_scene_palms} : std::size_t(K);
+/// A joint vector of a run with Q joints: JointVector for the LWR 4 pair, bounded Dynamic for scenes.
+template <int Q>
+using JointVectorOf = Eigen::Matrix<double, Q, 1, 0, (Q == Eigen::Dynamic ? max_scene_joints : Q), 1>;
+template <typename T, int K> using PalmArray = std::array<T, palm_capacity<K>>;
+
+/// One tick of the log (docs/dual-arm-box.md, "The CSV columns"); slots [0, K) of the palm arrays.
+template <int K, int Q> struct TickLogOf {
     double time = 0.0;
     Eigen::Vector3d box_position = Eigen::Vector3d::Zero();
     Eigen::Vector3d desired_position = Eigen::Vector3d::Zero();
@@ -120,43 +145,61 @@ struct TickLog {
     Vector6d external_wrench = Vector6d::Zero();  ///< F_x, the controller's estimate
     Vector6d disturbance = Vector6d::Zero();      ///< what the person applied, [F; T] at the centre
     Eigen::Vector3d box_acceleration = Eigen::Vector3d::Zero();  ///< the plant's, in this tick's step
-    std::array<Vector6d, palms> predicted{};      ///< QP's contact wrench, contact frame [f; t]
-    std::array<Vector6d, palms> measured{};       ///< plant's, contact frame
-    std::array<Vector6d, palms> measured_world{}; ///< plant's, about the contact point, {w}
+    PalmArray<Vector6d, K> predicted{};      ///< QP's contact wrench, contact frame [f; t]
+    PalmArray<Vector6d, K> measured{};       ///< plant's, contact frame
+    PalmArray<Vector6d, K> measured_world{}; ///< plant's, about the contact point, {w}
     /// Friction margins of the measured wrench under the true friction: force rows (N), moment rows (N m).
-    std::array<coopdyn::FrictionMargins<double>, palms> measured_margins{};
+    PalmArray<coopdyn::FrictionMargins<double>, K> measured_margins{};
     double predicted_force_margin = 0.0;   ///< tightest force-row margin of the QP's wrenches, controller's friction (N)
     double predicted_moment_margin = 0.0;  ///< tightest moment-row margin of the QP's wrenches (N m)
-    std::array<double, palms> slip{};             ///< m, the box relative to each palm since the start
+    PalmArray<double, K> slip{};             ///< m, the box relative to each palm since the start
     coopdyn::ControlStatus status = coopdyn::ControlStatus::ok;
     bool qp_ran = false;  ///< the contact QP ran this tick (not after an invalid_input or singular tick)
     coopdyn::QpStatus qp_status = coopdyn::QpStatus::solved;
     int qp_iterations = 0;
-    JointVector motion_torque = JointVector::Zero();   ///< tau_u
-    JointVector squeeze_torque = JointVector::Zero();  ///< tau_c
+    JointVectorOf<Q> motion_torque{};   ///< tau_u
+    JointVectorOf<Q> squeeze_torque{};  ///< tau_c
     double torque_use = 0.0;  ///< max_j |tau_j| / limit_j of the torque sent (after saturation)
     double box_mass = 0.0;    ///< the plant's current box mass (kg)
 };
+using TickLog = TickLogOf<palms, joints>;
 
-struct ExperimentRun {
-    std::vector<TickLog> log;
+template <int K, int Q> struct ExperimentRunOf {
+    std::vector<TickLogOf<K, Q>> log;
     bool dropped = false;         ///< the box left the palms (slip above drop_slip)
     double dropped_at = 0.0;
     double tick_seconds = 0.0;    ///< wall time of the controller ticks, total
     double wall_seconds = 0.0;    ///< wall time of the whole run
+    /// The palms' names in the log's columns ("left", "right" on the LWR 4 pair; "palm1".. in a
+    /// scene), one per palm: K at run time.
+    std::vector<std::string> palm_names{"left", "right"};
+    Eigen::Index joint_count = Q;  ///< Q at run time
+    std::size_t palm_count() const noexcept { return palm_names.size(); }
 };
+using ExperimentRun = ExperimentRunOf<palms, joints>;
 
 /// Slip above which a run counts as a drop and stops (m).
 constexpr double drop_slip = 0.05;
 /// How long the palms press into the box before t = 0 (s).
 constexpr double settle_seconds = 0.2;
 
+/// What a run needs besides the plant and the scenario: the controller's parameters (contact
+/// frames and the scenario's settings), q_n, the hold pose the desired motion starts from, the
+/// joints' torque limits and the palms' names.
+struct ExperimentSetup {
+    coopdyn::ControllerParameters<double> parameters;
+    Eigen::VectorXd posture;
+    coopdyn::Pose<double> hold{};
+    Eigen::VectorXd torque_limit;
+    std::vector<std::string> palm_names;
+};
+
 /// The controller's input from the plant's state: the arms' terms, the box's measured pose and
 /// twist, and its acceleration for L(7), the plant's last one low-passed as on a robot (a
 /// soft-contact simulation's raw acceleration is as spiky as a real accelerometer's).
-template <typename Plant>
-void read_plant(const Plant& plant, const ArmTerms& terms, double filter_gain, Vector6d& filtered_acceleration,
-                ControllerInput& input)
+template <typename Plant, typename Terms, typename Input>
+void read_plant(const Plant& plant, const Terms& terms, double filter_gain, Vector6d& filtered_acceleration,
+                Input& input)
 {
     input.inertia = terms.inertia;
     input.bias = terms.bias;
@@ -172,10 +215,10 @@ void read_plant(const Plant& plant, const ArmTerms& terms, double filter_gain, V
 }
 
 /// Clamps tau to the joints' torque limits; returns max_j |tau_j| / limit_j.
-inline double saturate(JointVector& tau, const JointVector& limit) noexcept
+template <typename Torque, typename Limit> double saturate(Torque& tau, const Limit& limit) noexcept
 {
     double use = 0.0;
-    for (int j = 0; j < joints; ++j) {
+    for (Eigen::Index j = 0; j < tau.size(); ++j) {
         tau(j) = std::clamp(tau(j), -limit(j), limit(j));
         use = std::max(use, std::abs(tau(j)) / limit(j));
     }
@@ -183,21 +226,29 @@ inline double saturate(JointVector& tau, const JointVector& limit) noexcept
 }
 
 /// The palms' frames ({w}) at one tick's start.
-struct PalmFrames {
-    std::array<Eigen::Vector3d, palms> position{};
-    std::array<Eigen::Matrix3d, palms> rotation{};
+template <int K> struct PalmFramesOf {
+    PalmArray<Eigen::Vector3d, K> position{};
+    PalmArray<Eigen::Matrix3d, K> rotation{};
+    template <typename Terms> void copy(const Terms& terms, std::size_t count) noexcept
+    {
+        for (std::size_t i = 0; i < count; ++i) {
+            position[i] = terms.palm_position[i];
+            rotation[i] = terms.palm_rotation[i];
+        }
+    }
 };
+using PalmFrames = PalmFramesOf<palms>;
 
 /// Each palm's predicted and measured wrench (contact frame), the measured one's true friction
 /// margin, and the slip: how far the box's centre moved in the palm's contact plane (the palm's
 /// x-y; along the normal the soft contact's penetration changes with the squeeze) since
 /// `box_in_palm` was taken.
-template <typename Plant>
-void log_palms(const Plant& plant, const PalmFrames& palms_seen, const ControllerData& data,
-               const FrictionRows& friction, const std::array<Eigen::Vector3d, palms>& box_in_palm,
-               const Eigen::Vector3d& box_position, TickLog& row)
+template <typename Plant, typename Data, int K, int Q>
+void log_palms(const Plant& plant, const PalmFramesOf<K>& palms_seen, const Data& data, const FrictionRows& friction,
+               const PalmArray<Eigen::Vector3d, K>& box_in_palm, const Eigen::Vector3d& box_position,
+               std::size_t count, TickLogOf<K, Q>& row)
 {
-    for (std::size_t i = 0; i < palms; ++i) {
+    for (std::size_t i = 0; i < count; ++i) {
         const auto palm = static_cast<int>(i);
         row.predicted[i] = data.contact_frame_wrenches.col(palm);
         const Eigen::Matrix3d& rotation = palms_seen.rotation[i];
@@ -206,17 +257,17 @@ void log_palms(const Plant& plant, const PalmFrames& palms_seen, const Controlle
         coopdyn::rotate_stack_back(rotation, world, row.measured[i]);  // [R^T f; R^T t], {w} to the palm frame
         row.measured_margins[i] = friction.margins(row.measured[i]);
         const Eigen::Vector3d now = rotation.transpose() * (box_position - palms_seen.position[i]);
-        row.slip[i] = (now - box_in_palm[i]).head<2>().norm();
+        row.slip[i] = (now - box_in_palm[i]).template head<2>().norm();
     }
 }
 
 /// The tick's log row (the palms' columns are log_palms'): the box against the desired motion,
 /// the controller's estimate, QP and torques, the person's wrench and the plant's box.
-template <typename Plant>
-TickLog tick_log(const Plant& plant, const ControllerInput& input, const Desired& desired, const ControllerData& data,
-                 double t, const Vector6d& disturbance, double torque_use)
+template <int K, int Q, typename Plant, typename Input, typename Data>
+TickLogOf<K, Q> tick_log(const Plant& plant, const Input& input, const Desired& desired, const Data& data, double t,
+                         const Vector6d& disturbance, double torque_use)
 {
-    TickLog row;
+    TickLogOf<K, Q> row;
     row.time = t;
     row.box_position = input.object.pose.position;
     row.desired_position = desired.pose.position;
@@ -239,55 +290,70 @@ TickLog tick_log(const Plant& plant, const ControllerInput& input, const Desired
     return row;
 }
 
-/// Runs `scenario` on `plant` (MujocoPlant or RigidGraspPlant) from the grasp at its current
-/// state, one plant step per 1 ms controller tick. `progress(fraction)` is called every simulated
-/// tenth of a second. The palms first press into the box for settle_seconds (not logged, no
-/// disturbance): in MuJoCo the keyframe's palms touch the box without force, and the soft contact
-/// takes a few ticks to build up the commanded squeeze.
-template <typename Plant>
-ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Grasp& grasp, unsigned long long seed = 1,
-                             const std::function<void(double)>& progress = {})
+/// The box's mass at time t (the scenario's masses put on it), set on the plant when it changes.
+template <typename Plant> void apply_added_mass(Plant& plant, const BoxScenario& scenario, double t)
 {
-    const Controller controller(controller_parameters(scenario.controller, grasp));
-    ControllerData data(controller);
-    ControllerInput input(controller);
-    input.posture = grasp.q;
+    if (scenario.added_mass) {
+        const double mass = scenario.box_mass + added_mass(*scenario.added_mass, t);
+        if (mass != plant.box_mass()) {
+            plant.set_box_mass(mass);
+        }
+    }
+}
+
+/// Runs `scenario` on `plant` from its current state with K palms and Q joints (the LWR 4 pair:
+/// 2, 14; a scene: Eigen::Dynamic, Eigen::Dynamic), one plant step per 1 ms controller tick.
+/// `progress(fraction)` is called every simulated tenth of a second. The palms first press into
+/// the box for settle_seconds (not logged, no disturbance): in MuJoCo the start's palms touch the
+/// box without force, and the soft contact takes a few ticks to build up the commanded squeeze.
+///
+/// The plant: begin_tick(); arm_terms() (inertia, bias, jacobian, jacobian_rate_qdot,
+/// palm_position[i], palm_rotation[i]); joint_positions(), joint_velocities(), box_position(),
+/// box_orientation(), box_twist(), box_acceleration(); end_tick(tau, wrench on the box's centre);
+/// measured_contact_wrench(i); box_mass(), set_box_mass(m).
+template <int K, int Q, typename Plant>
+ExperimentRunOf<K, Q> run_experiment_on(Plant& plant, const BoxScenario& scenario, const ExperimentSetup& setup,
+                                        unsigned long long seed = 1, const std::function<void(double)>& progress = {})
+{
+    const coopdyn::ControllerModel<double, K, Q> controller(setup.parameters);
+    coopdyn::ControllerData<double, K, Q> data(controller);
+    coopdyn::ControllerInput<double, K, Q> input(controller);
+    input.posture = setup.posture;
     const FrictionRows friction(true_friction(scenario.plant_friction, scenario.controller.patch_half_size));
-    JointVector limit;
-    limit << torque_limits(), torque_limits();
+    const Eigen::Matrix<double, Q, 1> limit = setup.torque_limit;
+    Eigen::Matrix<double, Q, 1> tau = limit;  // sized once: the tick's assignment allocates nothing
     const double cutoff = scenario.controller.acceleration_cutoff;
     const double filter_gain = cutoff > 0.0 ? 1.0 - std::exp(-2.0 * lwr4_pi * cutoff * controller_period) : 0.0;
     Vector6d filtered_acceleration = Vector6d::Zero();
     Person person(scenario, seed, controller_period);
-    std::array<Eigen::Vector3d, palms> box_in_palm{};  // the box's centre in each palm's frame at t = 0
+    PalmArray<Eigen::Vector3d, K> box_in_palm{};  // the box's centre in each palm's frame at t = 0
+    PalmFramesOf<K> palms_seen;
 
-    ExperimentRun run;
+    ExperimentRunOf<K, Q> run;
+    run.palm_names = setup.palm_names;
+    run.joint_count = setup.posture.size();
+    const std::size_t count = run.palm_count();
     const auto ticks = static_cast<long>(std::llround(scenario.duration / controller_period));
     const auto settle_ticks = static_cast<long>(std::llround(settle_seconds / controller_period));
     run.log.reserve(static_cast<std::size_t>(ticks));
     const auto wall_start = std::chrono::steady_clock::now();
     for (long tick = -settle_ticks; tick < ticks && !run.dropped; ++tick) {
         const double t = static_cast<double>(tick) * controller_period;
-        if (scenario.added_mass) {
-            const double mass = scenario.box_mass + added_mass(*scenario.added_mass, t);
-            if (mass != plant.box_mass()) {
-                plant.set_box_mass(mass);
-            }
-        }
+        apply_added_mass(plant, scenario, t);
         plant.begin_tick();
         // The controller's input is read from the plant's terms directly; only the palm frames are
         // copied: the rigid plant re-evaluates its terms at the next state in end_tick, and the
         // log needs the palms where the controller saw them.
-        const ArmTerms& terms = plant.arm_terms();
-        const PalmFrames palms_seen{terms.palm_position, terms.palm_rotation};
+        const auto& terms = plant.arm_terms();
+        palms_seen.copy(terms, count);
         read_plant(plant, terms, filter_gain, filtered_acceleration, input);
-        const Desired desired = desired_motion(scenario, grasp.box, t);
+        const Desired desired = desired_motion(scenario, setup.hold, t);
         input.desired_pose = desired.pose;
         input.desired_twist = desired.twist;
         input.desired_acceleration = desired.acceleration;
 
         const auto tick_start = std::chrono::steady_clock::now();
-        JointVector tau = coopdyn::controller_tick(controller, data, input);
+        tau = coopdyn::controller_tick(controller, data, input);
         run.tick_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tick_start).count();
         const double torque_use = saturate(tau, limit);
         const Vector6d disturbance =
@@ -297,17 +363,17 @@ ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Gr
             continue;
         }
         if (tick == 0) {
-            for (std::size_t i = 0; i < palms; ++i) {
+            for (std::size_t i = 0; i < count; ++i) {
                 box_in_palm[i] =
                     palms_seen.rotation[i].transpose() * (input.object.pose.position - palms_seen.position[i]);
             }
         }
 
-        TickLog row = tick_log(plant, input, desired, data, t, disturbance, torque_use);
-        log_palms(plant, palms_seen, data, friction, box_in_palm, input.object.pose.position, row);
+        TickLogOf<K, Q> row = tick_log<K, Q>(plant, input, desired, data, t, disturbance, torque_use);
+        log_palms(plant, palms_seen, data, friction, box_in_palm, input.object.pose.position, count, row);
         run.log.push_back(row);
 
-        if (std::max(row.slip[0], row.slip[1]) > drop_slip) {
+        if (*std::max_element(row.slip.begin(), row.slip.begin() + static_cast<std::ptrdiff_t>(count)) > drop_slip) {
             run.dropped = true;
             run.dropped_at = t;
         }
@@ -317,6 +383,23 @@ ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Gr
     }
     run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     return run;
+}
+
+/// Runs `scenario` on the LWR 4 pair's `plant` (MujocoPlant or RigidGraspPlant) from the grasp at
+/// its current state (run_experiment_on at K = 2, Q = 14).
+template <typename Plant>
+ExperimentRun run_experiment(Plant& plant, const BoxScenario& scenario, const Grasp& grasp, unsigned long long seed = 1,
+                             const std::function<void(double)>& progress = {})
+{
+    ExperimentSetup setup;
+    setup.parameters = controller_parameters(scenario.controller, grasp);
+    setup.posture = grasp.q;
+    setup.hold = grasp.box;
+    JointVector limit;
+    limit << torque_limits(), torque_limits();
+    setup.torque_limit = limit;
+    setup.palm_names = {"left", "right"};
+    return run_experiment_on<palms, joints>(plant, scenario, setup, seed, progress);
 }
 
 }  // namespace box_example

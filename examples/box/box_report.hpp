@@ -50,7 +50,9 @@ struct BoxSummary {
 /// The window at the start that counts as "at rest" (before any disturbance), s.
 constexpr double rest_window = 0.8;
 
-inline BoxSummary summarise(const BoxScenario& scenario, const std::string& plant, const ExperimentRun& run)
+/// One run's summary (K palms, Q joints at run time: the LWR 4 pair's or a scene's).
+template <int K, int Q>
+BoxSummary summarise(const BoxScenario& scenario, const std::string& plant, const ExperimentRunOf<K, Q>& run)
 {
     BoxSummary s;
     s.experiment = scenario.name;
@@ -58,13 +60,13 @@ inline BoxSummary summarise(const BoxScenario& scenario, const std::string& plan
     s.dropped = run.dropped;
     s.min_true_force_margin = s.min_true_moment_margin = std::numeric_limits<double>::infinity();
     int rest_samples = 0;
-    for (const TickLog& row : run.log) {
+    for (const TickLogOf<K, Q>& row : run.log) {
         // A tick that computed no control (invalid_input, singular) has no prediction to compare:
         // its outputs are reset to zero (docs/control.md, "After a failed tick").
         const bool predicted = coopdyn::control_computed(row.status);
         const bool held_by_person = scenario.person_hold && row.time >= scenario.person_hold->start &&
                                     row.time < scenario.person_hold->start + scenario.person_hold->duration + 1.0;
-        for (std::size_t i = 0; i < palms; ++i) {
+        for (std::size_t i = 0; i < run.palm_count(); ++i) {
             if (row.time < rest_window && predicted) {
                 s.rest_normal_predicted += row.predicted[i](2);
                 s.rest_normal_measured += row.measured[i](2);
@@ -76,11 +78,11 @@ inline BoxSummary summarise(const BoxScenario& scenario, const std::string& plan
             s.min_true_force_margin = std::min(s.min_true_force_margin, row.measured_margins[i].force);
             s.min_true_moment_margin = std::min(s.min_true_moment_margin, row.measured_margins[i].moment);
             if (predicted) {
-                s.max_force_error =
-                    std::max(s.max_force_error, (row.predicted[i].head<3>() - row.measured[i].head<3>()).norm());
+                const Eigen::Vector3d error = row.predicted[i].template head<3>() - row.measured[i].template head<3>();
+                s.max_force_error = std::max(s.max_force_error, error.norm());
             }
             s.needed_normal =
-                std::max(s.needed_normal, row.measured[i].head<2>().norm() / scenario.plant_friction.sliding);
+                std::max(s.needed_normal, row.measured[i].template head<2>().norm() / scenario.plant_friction.sliding);
         }
         s.qp_not_solved += row.qp_ran && row.qp_status != coopdyn::QpStatus::solved ? 1 : 0;
         s.fallback_ticks += row.status == coopdyn::ControlStatus::friction_infeasible ? 1 : 0;
@@ -94,20 +96,24 @@ inline BoxSummary summarise(const BoxScenario& scenario, const std::string& plan
         s.rest_normal_measured /= rest_samples;
     }
     s.simulated_seconds = run.log.empty() ? 0.0 : run.log.back().time + 0.001;
-    s.coulomb_estimate = static_load(scenario) / (2.0 * scenario.plant_friction.sliding);
+    // W / (K mu): the load shared equally by K palms (W / (2 mu) for a pair).
+    s.coulomb_estimate =
+        static_load(scenario) / (static_cast<double>(run.palm_count()) * scenario.plant_friction.sliding);
     s.real_time_factor = run.wall_seconds > 0.0 ? s.simulated_seconds / run.wall_seconds : 0.0;
     s.mean_tick_microseconds = run.log.empty() ? 0.0 : 1e6 * run.tick_seconds / static_cast<double>(run.log.size());
     return s;
 }
 
-/// The log's columns (docs/dual-arm-box.md, "The CSV columns").
-inline std::vector<std::string> box_log_columns()
+/// The log's columns (docs/dual-arm-box.md, "The CSV columns"): per palm, named `palm_names`, and
+/// per joint, 1 to `joint_count`.
+inline std::vector<std::string> box_log_columns(const std::vector<std::string>& palm_names = {"left", "right"},
+                                                Eigen::Index joint_count = joints)
 {
     std::vector<std::string> columns{"time", "x", "y", "z", "x_d", "y_d", "z_d", "rotation_error",
                                      "est_fx", "est_fy", "est_fz", "est_tx", "est_ty", "est_tz",
                                      "person_fx", "person_fy", "person_fz", "ax", "ay", "az"};
     const char* axes[] = {"fx", "fy", "fz", "tx", "ty", "tz"};
-    for (const char* palm : {"left", "right"}) {
+    for (const std::string& palm : palm_names) {
         for (const char* kind : {"pred", "meas"}) {
             for (const char* axis : axes) {
                 columns.push_back(std::string(palm) + "_" + kind + "_" + axis);
@@ -122,7 +128,7 @@ inline std::vector<std::string> box_log_columns()
         columns.emplace_back(name);
     }
     for (const char* kind : {"tau_u", "tau_c"}) {
-        for (int j = 1; j <= joints; ++j) {
+        for (Eigen::Index j = 1; j <= joint_count; ++j) {
             columns.push_back(std::string(kind) + "_" + std::to_string(j));
         }
     }
@@ -133,10 +139,11 @@ inline std::vector<std::string> box_log_columns()
 
 /// Writes every `every`-th tick of the run (--log-every; ticks 0, every, 2 every, ...): the file is
 /// thinned, the run (and the summary computed from it) is not.
-inline void write_box_log(const std::filesystem::path& path, const ExperimentRun& run, std::size_t every = 1)
+template <int K, int Q>
+void write_box_log(const std::filesystem::path& path, const ExperimentRunOf<K, Q>& run, std::size_t every = 1)
 {
     example_common::CsvWriter csv(path);
-    for (const std::string& column : box_log_columns()) {
+    for (const std::string& column : box_log_columns(run.palm_names, run.joint_count)) {
         csv.text(column);
     }
     csv.end_row();
@@ -146,19 +153,19 @@ inline void write_box_log(const std::filesystem::path& path, const ExperimentRun
         }
     };
     for (std::size_t tick = 0; tick < run.log.size(); tick += std::max<std::size_t>(every, 1)) {
-        const TickLog& row = run.log[tick];
+        const TickLogOf<K, Q>& row = run.log[tick];
         csv.number(row.time);
         numbers(row.box_position);
         numbers(row.desired_position);
         csv.number(row.orientation_error);
         numbers(row.external_wrench);
-        numbers(row.disturbance.head<3>());
+        numbers(row.disturbance.template head<3>());
         numbers(row.box_acceleration);
-        for (std::size_t i = 0; i < palms; ++i) {
+        for (std::size_t i = 0; i < run.palm_count(); ++i) {
             numbers(row.predicted[i]);
-            csv.number(row.predicted[i].head<3>().norm());
+            csv.number(row.predicted[i].template head<3>().norm());
             numbers(row.measured[i]);
-            csv.number(row.measured[i].head<3>().norm());
+            csv.number(row.measured[i].template head<3>().norm());
             csv.number(row.measured_margins[i].force);
             csv.number(row.measured_margins[i].moment);
             csv.number(row.slip[i]);
@@ -207,11 +214,32 @@ inline std::string box_height_plot(const BoxScenario& scenario, const std::strin
     return s;
 }
 
+/// Fig. 6's plot for any K: each palm's expected (blue) and measured (red) contact-force norm; the
+/// first two palms solid and dashed (ls 1-4), further ones in dash types of their own.
+inline std::string force_norm_plot(const std::string& csv_name, const std::vector<std::string>& palm_names)
+{
+    const auto column = [](const std::string& name) { return "(column('" + name + "'))"; };
+    std::string s = "plot '" + csv_name + "'";
+    for (std::size_t i = 0; i < palm_names.size(); ++i) {
+        const std::string& name = palm_names[i];
+        const std::string label = i == 0 ? name + " palm" : name;
+        const std::string expected = i < 2 ? "ls " + std::to_string(2 * i + 1)
+                                           : "lc rgb '#1f77b4' lw 1.5 dt " + std::to_string(i + 1);
+        const std::string measured = i < 2 ? "ls " + std::to_string(2 * i + 2)
+                                           : "lc rgb '#d62728' lw 1.2 dt " + std::to_string(i + 1);
+        s += std::string(i == 0 ? "" : ", ''") + " using " + column("time") + ":" + column(name + "_pred_force_norm") +
+             " with lines " + expected + " title 'expected (" + label + ")', '' using " + column("time") + ":" +
+             column(name + "_meas_force_norm") + " with lines " + measured + " title 'measured (" + label + ")'";
+    }
+    return s + "\n";
+}
+
 /// The gnuplot script of one run: Fig. 6's expected (blue) and measured (red) contact-force norm
 /// of each palm over time, plus what disturbed the box; for the circle, Fig. 8's y and z tracking
 /// (solid: the box, dashed: desired) above the force norms.
 inline std::string box_plot_script(const BoxScenario& scenario, const std::string& plant, const std::string& csv_name,
-                                   const std::string& png_name)
+                                   const std::string& png_name,
+                                   const std::vector<std::string>& palm_names = {"left", "right"})
 {
     const bool circle = scenario.experiment == Experiment::circle;
     std::string s;
@@ -236,11 +264,7 @@ inline std::string box_plot_script(const BoxScenario& scenario, const std::strin
         }
     }
     s += "set ylabel 'contact force norm [N]'\n";
-    s += "plot '" + csv_name + "' using " + column("time") + ":" + column("left_pred_force_norm") +
-         " with lines ls 1 title 'expected (left palm)', '' using " + column("time") + ":" +
-         column("left_meas_force_norm") + " with lines ls 2 title 'measured (left palm)', '' using " +
-         column("time") + ":" + column("right_pred_force_norm") + " with lines ls 3 title 'expected (right)', '' using " +
-         column("time") + ":" + column("right_meas_force_norm") + " with lines ls 4 title 'measured (right)'\n";
+    s += force_norm_plot(csv_name, palm_names);
     if (!circle) {
         if (scenario.experiment == Experiment::add_mass) {
             s += "set ylabel 'box mass [kg]'\n";
@@ -267,17 +291,17 @@ inline std::string format_optional(const char* pattern, const std::optional<doub
 /// The printed table: one row per run, the paper's numbers alongside.
 inline void print_box_table(const std::vector<std::pair<BoxScenario, BoxSummary>>& runs)
 {
-    std::printf("\n%-9s %-7s %9s %9s %6s %9s %9s %6s %8s %8s %8s %9s %8s %9s %6s %6s\n", "", "", "rest N", "meas", "paper",
-                "peak N", "meas", "paper", "slip mm", "F mrg N", "M mrg Nm", "needed N", "holds N", "W/(2mu)", "track",
-                "RTF");
+    std::printf("\n%-9s %-7s %9s %9s %6s %9s %9s %6s %8s %8s %8s %9s %8s %9s %6s %4s %6s\n", "", "", "rest N", "meas", "paper",
+                "peak N", "meas", "paper", "slip mm", "F mrg N", "M mrg Nm", "needed N", "holds N", "W/(K mu)", "track",
+                "QP", "RTF");
     for (const auto& [scenario, s] : runs) {
-        std::printf("%-9s %-7s %9.1f %9.1f %6s %9.1f %9.1f %6s %8.3f %8.2f %8.3f %9.1f %8s %9.1f %6.3f %6.0f%s\n",
+        std::printf("%-9s %-7s %9.1f %9.1f %6s %9.1f %9.1f %6s %8.3f %8.2f %8.3f %9.1f %8s %9.1f %6.3f %4d %6.0f%s\n",
                     s.experiment.c_str(), s.plant.c_str(), s.rest_normal_predicted, s.rest_normal_measured,
                     format_optional("%.0f", scenario.paper.squeeze_at_rest).c_str(), s.peak_normal_predicted,
                     s.peak_normal_measured, format_optional("%.0f", scenario.paper.squeeze_pushed).c_str(),
                     1e3 * s.max_slip, s.min_true_force_margin, s.min_true_moment_margin, s.needed_normal,
                     format_optional("%.1f", s.minimum_squeeze).c_str(), s.coulomb_estimate, s.max_tracking_error,
-                    s.real_time_factor, s.dropped ? "  DROPPED" : "");
+                    s.qp_not_solved + s.fallback_ticks, s.real_time_factor, s.dropped ? "  DROPPED" : "");
     }
 }
 

@@ -106,6 +106,9 @@ struct PaperNumbers {
 struct BoxScenario {
     std::string source = "(built in)";
     std::string name = "hold";
+    /// The scene file (examples/scenes, docs/scenes.md) whose arms hold the object, resolved against
+    /// the scenario file's folder; empty: the LWR 4 pair of dual_arm_box.xml at its fixed sizes.
+    std::optional<std::string> scene;
     Experiment experiment = Experiment::hold;
     double duration = 4.0;           ///< s
     double box_mass = 0.7;           ///< kg, true (unknown to the controller)

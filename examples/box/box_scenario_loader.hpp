@@ -10,6 +10,7 @@
 
 #include "../common/json_reader.hpp"
 
+#include <filesystem>
 #include <string>
 
 namespace box_example {
@@ -206,13 +207,21 @@ inline BoxScenario box_scenario(const JsonReader& reader, const json& document)
 {
     reader.expect_object(document, "");
     reader.only_keys(document, "",
-                     {"name", "description", "experiment", "duration", "box_mass", "plant_friction", "controller",
-                      "push", "added_mass", "person_hold", "circle", "person_tremor", "paper"});
+                     {"name", "description", "scene", "experiment", "duration", "box_mass", "plant_friction",
+                      "controller", "push", "added_mass", "person_hold", "circle", "person_tremor", "paper"});
     BoxScenario s;
     s.source = reader.source();
     s.name = reader.name(reader.required(document, "", "name"), "name");
     if (const json* description = reader.optional(document, "description")) {
         reader.string(*description, "description");
+    }
+    if (const json* scene = reader.optional(document, "scene")) {
+        const std::string file = reader.string(*scene, "scene");
+        if (file.empty()) {
+            reader.fail("scene", "must name a scene file (examples/scenes/*.json)");
+        }
+        // Relative to the scenario file, wherever the program runs.
+        s.scene = (std::filesystem::path(s.source).parent_path() / file).lexically_normal().string();
     }
     s.experiment = experiment(reader, reader.required(document, "", "experiment"), "experiment");
     s.duration = reader.in_range(reader.required(document, "", "duration"), "duration",

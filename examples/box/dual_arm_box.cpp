@@ -13,6 +13,7 @@
 #include "minimum_squeeze.hpp"
 #include "mujoco_plant.hpp"
 #include "mujoco_rigid_plant.hpp"
+#include "scene_box.hpp"
 
 #include "../common/cli.hpp"
 #include "../common/files.hpp"
@@ -26,6 +27,8 @@
 #include <cstddef>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -53,6 +56,7 @@ struct CommandLine {
     std::vector<std::string> experiments{"all"};
     std::vector<std::string> scenarios;  ///< files; empty: the shipped ones of `experiments`
     std::string plant = "mujoco";
+    std::string scene = "lwr4_pair";  ///< whose shipped scenarios --experiment picks
     double duration = 0.0;  ///< 0: each scenario's
     double friction = 0.0;  ///< 0: each scenario's controller friction
     unsigned long long seed = 1;
@@ -70,89 +74,156 @@ std::vector<std::string> scenario_files(const CommandLine& command)
     }
     std::vector<std::string> files;
     const bool all = std::find(command.experiments.begin(), command.experiments.end(), "all") != command.experiments.end();
+    // The LWR 4 pair's scenarios are scenarios/*.json (no scene: the fixed-size path); every other
+    // scene's are scenarios/<scene>/*.json.
+    const std::string folder = box_dir() + "/scenarios/" + (command.scene == "lwr4_pair" ? "" : command.scene + "/");
     for (const char* name : {"hold", "push", "add_mass", "circle"}) {
         if (all || std::find(command.experiments.begin(), command.experiments.end(), name) != command.experiments.end()) {
-            files.push_back(box_dir() + "/scenarios/" + name + ".json");
+            files.push_back(folder + name + ".json");
         }
     }
     return files;
 }
 
-/// Runs one scenario on one plant, writes its log and plot script; returns the summary.
-template <typename Plant>
-BoxSummary run_one(Plant& plant, const BoxScenario& scenario, const std::string& plant_name, const Grasp& grasp,
-                   const CommandLine& command, example_common::Progress& progress,
-                   std::vector<example_common::Plot>& plots)
+/// Writes one run's log and plot script; returns its summary.
+template <int K, int Q>
+BoxSummary report_one(const ExperimentRunOf<K, Q>& run, const BoxScenario& scenario, const std::string& plant_name,
+                      const CommandLine& command, std::vector<example_common::Plot>& plots)
 {
-    const std::string label = scenario.name + " (" + plant_name + ")";
-    const ExperimentRun run =
-        run_experiment(plant, scenario, grasp, command.seed, [&](double fraction) { progress.update(label, fraction); });
-    progress.finish();
     const std::string stem = scenario.name + "_" + plant_name;
     const fs::path csv = example_common::confined_path(command.output, stem + ".csv");
     write_box_log(csv, run, command.log_every);
     const fs::path script = example_common::confined_path(command.output, stem + ".gp");
     const fs::path image = example_common::confined_path(command.output, stem + ".png");
-    example_common::write_text_file(
-        script, box_plot_script(scenario, plant_name, csv.filename().string(), image.filename().string()));
+    example_common::write_text_file(script, box_plot_script(scenario, plant_name, csv.filename().string(),
+                                                            image.filename().string(), run.palm_names));
     plots.push_back({script, image});
     return summarise(scenario, plant_name, run);
 }
 
-int run(const CommandLine& command, std::vector<BoxScenario> scenarios)
-{
-    const DualArmBoxModel world(box_dir() + "/dual_arm_box.xml");
-    const Grasp grasp = hold_grasp(world);  // --output was created and checked by main()
-    example_common::Progress progress(command.progress);
+/// The runs' bookkeeping: the progress line, the plot scripts, the table's rows.
+struct Runs {
+    example_common::Progress progress;
     std::vector<example_common::Plot> plots;
     std::vector<std::pair<BoxScenario, BoxSummary>> summaries;
-    const bool mujoco = command.plant != "rigid";
-    const bool rigid = command.plant != "mujoco";
-    for (BoxScenario& scenario : scenarios) {
+};
+
+/// A scenario on the LWR 4 pair (no scene), on the plants asked for; `world` is loaded on first use.
+void run_lwr4(const BoxScenario& scenario, const CommandLine& command, std::unique_ptr<DualArmBoxModel>& world,
+              Runs& runs)
+{
+    if (!world) {
+        world = std::make_unique<DualArmBoxModel>(box_dir() + "/dual_arm_box.xml");
+    }
+    const Grasp grasp = hold_grasp(*world);
+    for (const char* plant_name : {"mujoco", "rigid"}) {
+        if (command.plant != "both" && command.plant != plant_name) {
+            continue;
+        }
+        const std::string label = scenario.name + " (" + plant_name + ")";
+        const auto update = [&](double fraction) { runs.progress.update(label, fraction); };
+        ExperimentRun run;
+        if (std::string(plant_name) == "mujoco") {
+            MujocoPlant plant(*world, scenario.plant_friction);
+            plant.set_box_mass(scenario.box_mass);
+            run = run_experiment(plant, scenario, grasp, command.seed, update);
+        } else {
+            const DataPointer start = world->make_data_at_hold();
+            RigidGraspPlant plant = make_rigid_plant(*world, *start, box_inertia(*world, scenario.box_mass));
+            run = run_experiment(plant, scenario, grasp, command.seed, update);
+        }
+        runs.progress.finish();
+        BoxSummary summary = report_one(run, scenario, plant_name, command, runs.plots);
+        if (command.minimum_squeeze && std::string(plant_name) == "mujoco") {
+            runs.progress.update(scenario.name + " (minimum squeeze)", 0.0);
+            if (const auto measured = measure_minimum_squeeze(*world, grasp, scenario)) {
+                summary.minimum_squeeze = measured->squeeze;
+            }
+            runs.progress.finish();
+        }
+        runs.summaries.emplace_back(scenario, summary);
+    }
+}
+
+/// A scenario on its scene (scene_box.hpp), at dynamic sizes, on the plants asked for. The
+/// minimum squeeze is measured on the LWR 4 pair only.
+void run_scene(const BoxScenario& scenario, const scenes::Scene& scene, const CommandLine& command, Runs& runs)
+{
+    for (const char* plant_name : {"mujoco", "rigid"}) {
+        if (command.plant != "both" && command.plant != plant_name) {
+            continue;
+        }
+        const std::string label = scenario.name + " (" + plant_name + ")";
+        const SceneRun run = run_scene_experiment(scene, scenario, std::string(plant_name) == "rigid", command.seed,
+                                                  [&](double fraction) { runs.progress.update(label, fraction); });
+        runs.progress.finish();
+        runs.summaries.emplace_back(scenario, report_one(run, scenario, plant_name, command, runs.plots));
+    }
+}
+
+void print_legend(const std::vector<BoxScenario>& scenarios, const std::vector<std::optional<scenes::Scene>>& scene_of)
+{
+    if (!scene_of.front()) {
+        std::printf("dual_arm_box: two 7-joint arms squeeze a %.1f kg box (unknown to the controller), Lin et al. "
+                    "section IV\n",
+                    scenarios.front().box_mass);
+    } else {
+        const scenes::Scene& scene = *scene_of.front();
+        std::printf("dual_arm_box: scene %s: %ld arms, %ld joints squeeze a %.1f kg object (unknown to the "
+                    "controller), Lin et al. section IV\n",
+                    fs::path(scene.source).filename().string().c_str(), static_cast<long>(scene.arms()),
+                    static_cast<long>(scene.joints()),
+                    scenarios.front().box_mass);
+    }
+}
+
+/// Each scenario's scene, read before anything runs (or is written): a bad scene file fails at once.
+std::vector<std::optional<scenes::Scene>> read_scenes(const std::vector<BoxScenario>& scenarios)
+{
+    std::vector<std::optional<scenes::Scene>> scene_of;
+    for (const BoxScenario& scenario : scenarios) {
+        scene_of.push_back(scenario.scene ? std::optional<scenes::Scene>(scenes::read_scene(*scenario.scene))
+                                          : std::nullopt);
+    }
+    return scene_of;
+}
+
+int run(const CommandLine& command, std::vector<BoxScenario> scenarios,
+        const std::vector<std::optional<scenes::Scene>>& scene_of)
+{
+    std::unique_ptr<DualArmBoxModel> world;  // --output was created and checked by main()
+    Runs runs{example_common::Progress(command.progress), {}, {}};
+    for (std::size_t k = 0; k < scenarios.size(); ++k) {
+        BoxScenario& scenario = scenarios[k];
         if (command.duration > 0.0) {
             scenario.duration = command.duration;
         }
         if (command.friction > 0.0) {
             scenario.controller.friction = command.friction;
         }
-        if (mujoco) {
-            MujocoPlant plant(world, scenario.plant_friction);
-            plant.set_box_mass(scenario.box_mass);
-            BoxSummary summary = run_one(plant, scenario, "mujoco", grasp, command, progress, plots);
-            if (command.minimum_squeeze) {
-                progress.update(scenario.name + " (minimum squeeze)", 0.0);
-                if (const auto measured = measure_minimum_squeeze(world, grasp, scenario)) {
-                    summary.minimum_squeeze = measured->squeeze;
-                }
-                progress.finish();
-            }
-            summaries.emplace_back(scenario, summary);
-        }
-        if (rigid) {
-            const DataPointer start = world.make_data_at_hold();
-            RigidGraspPlant plant = make_rigid_plant(world, *start, box_inertia(world, scenario.box_mass));
-            summaries.emplace_back(scenario, run_one(plant, scenario, "rigid", grasp, command, progress, plots));
+        if (scene_of[k]) {
+            run_scene(scenario, *scene_of[k], command, runs);
+        } else {
+            run_lwr4(scenario, command, world, runs);
         }
     }
-    std::printf("dual_arm_box: two 7-joint arms squeeze a %.1f kg box (unknown to the controller), Lin et al. "
-                "section IV\n",
-                scenarios.front().box_mass);
-    print_box_table(summaries);
+    print_legend(scenarios, scene_of);
+    print_box_table(runs.summaries);
     std::printf("  rest/peak N: normal force per palm, the QP's (expected) and the plant's (measured); slip: the box "
                 "relative to the palms;\n  F mrg N, M mrg Nm: tightest friction margins of the measured wrenches under the "
                 "true friction, force rows (N) and moment rows (N m); needed N: |f_t| / mu_true;\n  holds N: the smallest squeeze that still holds the heaviest static "
-                "load in MuJoCo (measured); W/(2mu): its Coulomb estimate;\n  track: largest |x - x_d| (m) outside a "
-                "person's hold; RTF: real-time factor.\n");
+                "load in MuJoCo (measured; LWR 4 pair only); W/(K mu): its Coulomb estimate, K palms;\n  track: largest |x - x_d| (m) outside a "
+                "person's hold; QP: ticks whose contact QP was not solved; RTF: real-time factor.\n");
     std::printf("logs and plot scripts: %s%s\n", command.output.c_str(),
                 command.log_every == 1 ? ""
                                        : (" (the CSV logs hold 1 tick in " + std::to_string(command.log_every) +
                                           "; the table used every tick)")
                                              .c_str());
     bool dropped = false;
-    for (const auto& entry : summaries) {
+    for (const auto& entry : runs.summaries) {
         dropped = dropped || entry.second.dropped;
     }
-    if (command.plots && !example_common::render_plots("dual_arm_box", plots)) {
+    if (command.plots && !example_common::render_plots("dual_arm_box", runs.plots)) {
         return exit_failure;
     }
     if (dropped) {
@@ -168,15 +239,20 @@ int main(int argc, char** argv)
 {
     CommandLine command;
     CLI::App app{"dual_arm_box: the dual-arm box experiments of Lin et al. (section IV, Figs. 5-8) in simulation.\n"
-                 "Two 7-joint arms hold a box by friction with coopdyn's projected inverse-dynamics controller\n"
-                 "while a person pushes it, loads it or grabs it. Writes CSV logs, gnuplot scripts and PNG plots\n"
-                 "to --output. Docs: docs/dual-arm-box.md",
+                 "Two 7-joint arms (or any scene's arms: --scene, a scenario's \"scene\") hold a box by friction\n"
+                 "with coopdyn's projected inverse-dynamics controller while a person pushes it, loads it or grabs\n"
+                 "it. Writes CSV logs, gnuplot scripts and PNG plots to --output. Docs: docs/dual-arm-box.md",
                  "dual_arm_box"};
     app.option_defaults()->always_capture_default();
     app.add_option("--experiment", command.experiments, "Shipped experiments to run: hold, push, add_mass, circle or all")
         ->delimiter(',')
         ->check(CLI::IsMember({"hold", "push", "add_mass", "circle", "all"}))
         ->type_name("LIST");
+    app.add_option("--scene", command.scene,
+                   "Whose shipped scenarios --experiment runs: lwr4_pair (examples/box/scenarios/), ur5e_panda or "
+                   "three_arms (examples/box/scenarios/<scene>/; docs/scenes.md)")
+        ->check(CLI::IsMember({"lwr4_pair", "ur5e_panda", "three_arms"}))
+        ->type_name("SCENE");
     app.add_option("--scenario", command.scenarios,
                    "Scenario files (JSON) instead of the shipped ones (examples/box/scenarios/), run one after the "
                    "other (repeat the option); relative to the working directory")
@@ -237,8 +313,9 @@ int main(int argc, char** argv)
                 }
             }
         }
+        const std::vector<std::optional<scenes::Scene>> scene_of = read_scenes(scenarios);
         example_common::prepare_output_folder(command.output);
-        return run(command, std::move(scenarios));
+        return run(command, std::move(scenarios), scene_of);
     } catch (const FileError& error) {
         std::fprintf(stderr, "dual_arm_box: %s\n", error.what());
         return exit_file;

@@ -10,6 +10,7 @@
 //     "start": {"contacts": [{"position": [..], "orientation": [..]}, ...], "seed": [Q numbers]}
 //                                                   each contact frame in the object (IK targets)
 //     "posture": [Q numbers]                        optional: q_n, default the start posture
+//     "torque_limits": [Q numbers]                  optional: |tau_j| limits (N m), default none
 //   }
 //
 // Errors are example_common::ScenarioError naming the file and the field's JSON path
@@ -47,6 +48,10 @@ struct Scene {
     coopdyn::Pose<double> object_pose{};     ///< the object body's frame in {w} at the start
     SceneStart start;
     std::optional<Eigen::VectorXd> posture;  ///< q_n (default: the start posture)
+    /// The joints' torque limits (N m; the URDFs' effort limits): the box experiments clamp the
+    /// controller's torques to them. The MJCFs generated from URDF carry no actuators, so the
+    /// limits are the scene's; without them the torques are not clamped.
+    std::optional<Eigen::VectorXd> torque_limits;
 
     Eigen::Index joints() const noexcept { return static_cast<Eigen::Index>(joint_names.size()); }
     Eigen::Index arms() const noexcept { return static_cast<Eigen::Index>(contact_sites.size()); }
@@ -129,7 +134,8 @@ inline Scene parse_scene(const std::string& text, const std::string& source, con
 {
     return example_common::read_document(text, source, [&](const detail::JsonReader& reader, const detail::json& document) {
         using detail::join_path;
-        reader.only_keys(document, "", {"model", "joints", "contact_sites", "object", "start", "posture"});
+        reader.only_keys(document, "",
+                         {"model", "joints", "contact_sites", "object", "start", "posture", "torque_limits"});
         Scene scene;
         scene.source = source;
         const std::string model = reader.string(reader.required(document, "", "model"), "model");
@@ -155,6 +161,14 @@ inline Scene parse_scene(const std::string& text, const std::string& source, con
                                     scene.contact_sites.size());
         if (const detail::json* posture = reader.optional(document, "posture")) {
             scene.posture = detail::joint_vector(reader, *posture, "posture", scene.joint_names.size());
+        }
+        if (const detail::json* limits = reader.optional(document, "torque_limits")) {
+            scene.torque_limits = detail::joint_vector(reader, *limits, "torque_limits", scene.joint_names.size());
+            for (Eigen::Index j = 0; j < scene.torque_limits->size(); ++j) {
+                if (!((*scene.torque_limits)(j) > 0.0)) {
+                    reader.fail(detail::index_path("torque_limits", static_cast<std::size_t>(j)), "must be positive");
+                }
+            }
         }
         return scene;
     });

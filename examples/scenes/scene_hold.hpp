@@ -63,7 +63,9 @@ public:
     explicit MujocoScenePlant(SceneWorld& world)
         : world_(world),
           normal_force_(static_cast<std::size_t>(world.arms().arms()), 0.0),
-          contact_points_(static_cast<std::size_t>(world.arms().arms()), 0)
+          contact_points_(static_cast<std::size_t>(world.arms().arms()), 0),
+          palm_position_(static_cast<std::size_t>(world.arms().arms()), Eigen::Vector3d::Zero()),
+          measured_(static_cast<std::size_t>(world.arms().arms()), coopdyn::Vector6<double>::Zero())
     {
     }
 
@@ -77,15 +79,25 @@ public:
         input.object = coopdyn::mujoco_object_state(world_.model(), world_.data(), world_.object_body());
         input.object_acceleration = acceleration_;
         orientation_ = input.object.pose.orientation;
+        for (std::size_t i = 0; i < palm_position_.size(); ++i) {  // the measured moments are about these
+            palm_position_[i] = contact_pose(static_cast<Eigen::Index>(i)).position;
+        }
     }
     /// Contact i's frame at the tick's start (the state the controller saw).
     coopdyn::Pose<double> contact_pose(Eigen::Index i) const { return world_.arms().contact_pose(world_.data(), i); }
-    /// qfrc_applied = tau, mj_step2, then the object's acceleration and the palms' normal forces.
-    void end_tick(const Eigen::VectorXd& tau) noexcept
+    /// qfrc_applied = tau, mj_step2, then the object's acceleration and the palms' contact forces.
+    void end_tick(const Eigen::VectorXd& tau) noexcept { end_tick(tau, coopdyn::Vector6<double>::Zero()); }
+    /// The same with a wrench [F; T] ({w}) on the object's centre of mass (a person's push; the
+    /// box experiments, examples/box/scene_box.hpp).
+    void end_tick(const Eigen::VectorXd& tau, const coopdyn::Vector6<double>& object_wrench) noexcept
     {
         mjData* data = world_.data();
         for (Eigen::Index j = 0; j < world_.arms().joints(); ++j) {
             data->qfrc_applied[world_.arms().dof_address(j)] = tau(j);
+        }
+        mjtNum* applied = data->xfrc_applied + 6 * world_.object_body();
+        for (int k = 0; k < 6; ++k) {
+            applied[k] = object_wrench(k);
         }
         mj_step2(world_.model(), data);
         // The free joint's qacc: linear in {w}, angular in the body frame.
@@ -96,31 +108,75 @@ public:
     /// Palm i's normal force on the object (N) and its MuJoCo contact points, in the last step.
     double normal_force(Eigen::Index i) const noexcept { return normal_force_[static_cast<std::size_t>(i)]; }
     int contact_points(Eigen::Index i) const noexcept { return contact_points_[static_cast<std::size_t>(i)]; }
+    /// Palm i's whole wrench [f; t] on the object about its contact site (where the controller saw
+    /// it), {w}, summed over its MuJoCo contacts in the last step.
+    const coopdyn::Vector6<double>& measured_contact_wrench(Eigen::Index i) const noexcept
+    {
+        return measured_[static_cast<std::size_t>(i)];
+    }
+    /// [a; alpha] of the object's centre in the last step, {w}.
+    const coopdyn::Vector6<double>& object_acceleration() const noexcept { return acceleration_; }
+    double object_mass() const noexcept { return world_.model()->body_mass[world_.object_body()]; }
+    /// Puts mass on the object (the box's "add mass"): its mass and rotational inertia grow in
+    /// proportion, in the world's model (a world per run: examples/box/scene_box.hpp). mj_setConst
+    /// overwrites the mjData it is given, so it gets a scratch one.
+    void set_object_mass(double mass)
+    {
+        mjModel* model = world_.model();
+        const int body = world_.object_body();
+        const double ratio = mass / model->body_mass[body];
+        model->body_mass[body] = mass;
+        for (int k = 0; k < 3; ++k) {
+            model->body_inertia[3 * body + k] *= ratio;
+        }
+        DataPointer scratch(mj_makeData(model));
+        mj_setConst(model, scratch.get());
+    }
 
 private:
     void measure_contacts() noexcept
     {
         std::fill(normal_force_.begin(), normal_force_.end(), 0.0);
         std::fill(contact_points_.begin(), contact_points_.end(), 0);
+        std::fill(measured_.begin(), measured_.end(), coopdyn::Vector6<double>::Zero());
         const mjData* data = world_.data();
         for (int c = 0; c < data->ncon; ++c) {
             const mjContact& contact = data->contact[c];
             for (Eigen::Index i = 0; i < world_.arms().arms(); ++i) {
-                const bool ours = (contact.geom1 == world_.palm_geom(i) && contact.geom2 == world_.object_geom(i)) ||
-                                  (contact.geom2 == world_.palm_geom(i) && contact.geom1 == world_.object_geom(i));
+                const bool palm_first = contact.geom1 == world_.palm_geom(i) && contact.geom2 == world_.object_geom(i);
+                const bool ours =
+                    palm_first || (contact.geom2 == world_.palm_geom(i) && contact.geom1 == world_.object_geom(i));
                 if (ours) {
-                    mjtNum local[6];
-                    mj_contactForce(world_.model(), data, c, local);  // local[0]: the normal force, >= 0
-                    normal_force_[static_cast<std::size_t>(i)] += local[0];
-                    ++contact_points_[static_cast<std::size_t>(i)];
+                    add_contact(contact, c, palm_first, static_cast<std::size_t>(i));
                 }
             }
         }
     }
 
+    /// mj_contactForce: in the contact frame (rows of contact.frame: the normal from geom1 to geom2,
+    /// then the tangents), geom1's force on geom2; turned to {w} and to the palm's force on the
+    /// object, its moment about the palm's contact site plus the torsion about the normal.
+    void add_contact(const mjContact& contact, int index, bool palm_first, std::size_t palm) noexcept
+    {
+        mjtNum local[6];
+        mj_contactForce(world_.model(), world_.data(), index, local);  // local[0]: the normal force, >= 0
+        normal_force_[palm] += local[0];
+        ++contact_points_[palm];
+        const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> frame(contact.frame);
+        const double sign = palm_first ? 1.0 : -1.0;
+        const Eigen::Vector3d force = sign * (frame.transpose() * Eigen::Vector3d(local[0], local[1], local[2]));
+        const Eigen::Vector3d torsion = sign * local[3] * frame.row(0).transpose();
+        const Eigen::Vector3d arm =
+            Eigen::Vector3d(contact.pos[0], contact.pos[1], contact.pos[2]) - palm_position_[palm];
+        measured_[palm].head<3>() += force;
+        measured_[palm].tail<3>() += arm.cross(force) + torsion;
+    }
+
     SceneWorld& world_;
     std::vector<double> normal_force_;
     std::vector<int> contact_points_;
+    std::vector<Eigen::Vector3d> palm_position_;          ///< contact sites at the tick's start, {w}
+    std::vector<coopdyn::Vector6<double>> measured_;     ///< palms' wrenches on the object
     coopdyn::Vector6<double> acceleration_ = coopdyn::Vector6<double>::Zero();
     Eigen::Quaterniond orientation_ = Eigen::Quaterniond::Identity();
 };

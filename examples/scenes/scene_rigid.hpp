@@ -105,8 +105,12 @@ public:
 
     /// One RK4 step under tau (held over the step); the palms' wrenches are those at the step's
     /// start (the state the controller saw).
-    void end_tick(const Eigen::VectorXd& tau)
+    void end_tick(const Eigen::VectorXd& tau) { end_tick(tau, Vector6::Zero()); }
+    /// The same with a wrench [F; T] ({w}) on the object's centre of mass, held over the step (a
+    /// person's push; the box experiments, examples/box/scene_box.hpp).
+    void end_tick(const Eigen::VectorXd& tau, const Vector6& object_wrench)
     {
+        object_wrench_ = object_wrench;
         const double dt = period();
         const std::array<double, 4> fraction{0.0, 0.5, 0.5, 1.0};
         std::array<Eigen::VectorXd, 4> position_rate;
@@ -135,6 +139,18 @@ public:
     /// contact normal (negative: the weld pulls).
     double normal_force(Index i) const noexcept { return normal_force_[static_cast<std::size_t>(i)]; }
     int contact_points(Index) const noexcept { return 1; }
+    /// Palm i's whole wrench [f; t] on the object about its contact point, {w}, at the last step's
+    /// start: the weld's constraint wrench -h_i (JointSpaceGrasp::palm_wrench is the object's on the palm).
+    const Vector6& measured_contact_wrench(Index i) const noexcept { return measured_[static_cast<std::size_t>(i)]; }
+    /// [a; alpha] of the object's centre at the last step's start, {w}.
+    const Vector6& object_acceleration() const noexcept { return acceleration_; }
+    double object_mass() const noexcept { return mass_; }
+    /// Puts mass on the object: its mass and rotational inertia grow in proportion.
+    void set_object_mass(double mass) noexcept
+    {
+        inertia_ *= mass / mass_;
+        mass_ = mass;
+    }
     /// The weld's worst position (m) and rotation (rad) error at the current state.
     std::array<double, 2> weld_error()
     {
@@ -238,6 +254,7 @@ private:
         const Eigen::Matrix3d inertia_world = rotation * inertia_ * rotation.transpose();
         Vector6 free_wrench;
         free_wrench << mass_ * gravity_, -w.cross(inertia_world * w);
+        free_wrench += object_wrench_;
         if (!grasp_.solve(coopdyn::CentralInertia<double>(mass_, inertia_world), offsets_, w, free_wrench,
                           joint_acceleration_)) {
             throw SceneError("rigid plant: an arm is singular (a palm cannot move in every direction)");
@@ -247,7 +264,9 @@ private:
         if (keep) {
             acceleration_ = grasp_.object_acceleration();
             normal_force_.resize(static_cast<std::size_t>(arms.arms()));
+            measured_.resize(static_cast<std::size_t>(arms.arms()));
             for (Index i = 0; i < arms.arms(); ++i) {
+                measured_[static_cast<std::size_t>(i)] = -grasp_.palm_wrench(i);
                 const coopdyn::Pose<double> palm = arms.contact_pose(scratch_.get(), i);
                 // The palm's wrench on the object is -h_i; its normal: the contact frame's z.
                 normal_force_[static_cast<std::size_t>(i)] =
@@ -294,6 +313,8 @@ private:
     std::vector<Vector6> stabilisation_;
     Vector6 acceleration_;
     std::vector<double> normal_force_;
+    std::vector<Vector6> measured_;  ///< the palms' wrenches on the object, {w}
+    Vector6 object_wrench_ = Vector6::Zero();  ///< a push on the object's centre, this step
     Eigen::VectorXd stage_acceleration_;
     Eigen::VectorXd joint_acceleration_;
     Eigen::VectorXd free_torque_;

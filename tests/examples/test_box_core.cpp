@@ -22,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <random>
 #include <string>
@@ -38,7 +39,31 @@ TEST(BoxScenarioLoader, ShippedScenariosLoad)
         const BoxScenario scenario = load_box_scenario(std::string(COOPDYN_BOX_DIR) + "/scenarios/" + name + ".json");
         EXPECT_EQ(std::string(to_string(scenario.experiment)), name);
         EXPECT_GT(scenario.duration, 0.0) << name;
+        EXPECT_FALSE(scenario.scene.has_value()) << name;  // the LWR 4 pair at its fixed sizes
+        // Every other shipped scene's: its scene file, resolved against the scenario's folder.
+        for (const std::string scene : {"ur5e_panda", "three_arms"}) {
+            const std::string folder = std::string(COOPDYN_BOX_DIR) + "/scenarios/" + scene;
+            const BoxScenario on_scene = load_box_scenario(folder + "/" + name + ".json");
+            EXPECT_EQ(std::string(to_string(on_scene.experiment)), name) << scene;
+            ASSERT_TRUE(on_scene.scene.has_value()) << scene << " " << name;
+            EXPECT_TRUE(std::filesystem::equivalent(*on_scene.scene, std::string(COOPDYN_BOX_DIR) + "/../scenes/" +
+                                                                         scene + ".json"))
+                << *on_scene.scene;
+        }
     }
+    const auto refused = [](const std::string& scene) -> std::string {
+        try {
+            parse_box_scenario("{\"name\": \"x\", \"scene\": " + scene +
+                                   ", \"experiment\": \"hold\", \"duration\": 1, \"box_mass\": 1, "
+                                   "\"plant_friction\": {\"sliding\": 0.5, \"torsional\": 0}}",
+                               "dir/s.json");
+        } catch (const ScenarioError& error) {
+            return error.what();
+        }
+        return "accepted";
+    };
+    EXPECT_EQ(refused("\"\""), "dir/s.json: scene: must name a scene file (examples/scenes/*.json)");
+    EXPECT_EQ(refused("3"), "dir/s.json: scene: expected a string, got number");
 }
 
 // The ranges the command line applies to --duration and --friction hold for the scenario's fields
@@ -300,7 +325,10 @@ TEST(RigidGraspPlant, AStepAllocatesNothing)
     // solves) on the heap: neither operator new nor Eigen's malloc.
     RigidGraspPlant plant(hold_state(), box_inertia(0.7));
     std::mt19937_64 rng(9);
-    const auto [tau, push] = random_drive(rng);
+    // Not a structured binding: a lambda may not capture one in C++17 (clang++ refuses it).
+    const auto drive = random_drive(rng);
+    const auto& tau = drive.first;
+    const auto& push = drive.second;
     const auto counts = allocation_counter::count_allocations([&] {
         for (int tick = 0; tick < 10; ++tick) {
             plant.end_tick(tau, push);

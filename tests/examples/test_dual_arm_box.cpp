@@ -242,6 +242,125 @@ TEST_F(DualArmBox, RigidPlantContactForcesAgreeWithThePredictionToTheModelError)
     RecordProperty("worst_error_over_model_error", std::to_string(worst_ratio));
 }
 
+// Every shipped scene (examples/box/scenarios/<scene>/, docs/dual-arm-box.md "Scenes"), every
+// experiment, both plants, 2.5 s each (the pushes, masses and circle start by 2 s): the box is held
+// (slip below 1 mm in every palm's plane, the whole run simulated: never dropped), every tick's
+// contact QP solved and the tick ok, and at rest (the first 0.8 s) the least squeeze: every palm at
+// least f_min and the least-pressed one at f_min (its bound: less squeeze would be infeasible),
+// with the plant's normal forces the QP's (the measured wrench's frame and sign).
+struct SceneCase {
+    std::string scene;
+    std::vector<std::string> palms;  ///< the CSV's palm names
+    double minimum_normal_force;     ///< the scenarios' f_min (N)
+};
+
+class DualArmBoxScene : public DualArmBox {
+protected:
+    void check_scene(const SceneCase& c)
+    {
+        ASSERT_NO_FATAL_FAILURE(run("all", "both", "--no-minimum-squeeze --scene " + c.scene + " --duration 2.5"));
+        EXPECT_TRUE(contains(run_.output, "scene ")) << run_.output;
+        for (const std::string& experiment : experiments) {
+            for (const char* plant : {"mujoco", "rigid"}) {
+                SCOPED_TRACE(c.scene + " " + experiment + " " + plant);
+                const CsvTable table = log(experiment, plant);
+                ASSERT_EQ(table.rows(), 2500u);  // not dropped: every tick of 2.5 s ran
+                for (std::size_t row = 0; row < table.rows(); ++row) {
+                    ASSERT_EQ(table.text(row, "qp_status"), "solved") << "row " << row;
+                    ASSERT_EQ(table.text(row, "status"), "ok") << "row " << row;
+                }
+                check_rest(c, table);
+            }
+        }
+    }
+
+    static void check_rest(const SceneCase& c, const CsvTable& table)
+    {
+        double least = 1e9;
+        for (const std::string& palm : c.palms) {
+            EXPECT_LT(column_max(table, palm + "_slip"), 1e-3) << palm;
+            double predicted = 0.0, measured = 0.0;
+            int samples = 0;
+            for (std::size_t row = 0; row < table.rows(); ++row) {
+                const double t = table.number(row, "time");
+                if (t < 0.8) {
+                    EXPECT_GE(table.number(row, palm + "_pred_fz"), c.minimum_normal_force - 1e-6)
+                        << palm << " t " << t;
+                }
+                if (t >= 0.4 && t < 0.8) {  // settled
+                    predicted += table.number(row, palm + "_pred_fz");
+                    measured += table.number(row, palm + "_meas_fz");
+                    ++samples;
+                }
+            }
+            predicted /= samples;
+            measured /= samples;
+            EXPECT_NEAR(measured, predicted, 0.03 * predicted) << palm;
+            least = std::min(least, predicted);
+        }
+        EXPECT_NEAR(least, c.minimum_normal_force, 0.5);
+    }
+};
+
+TEST_F(DualArmBoxScene, Ur5ePandaHoldsTheBoxInEveryExperimentOnBothPlants)
+{
+    check_scene({"ur5e_panda", {"ur5e", "panda"}, 30.0});
+    // Pushed down with 20 N (held from 2 s), the pair squeezes enough for the controller's
+    // friction model: per palm (F + m g) / (2 mu) = (20 + 0.8 * 9.81) / 0.4 = 69.6 N, where the
+    // 30 N at rest would hold only 2 mu f_min = 12 N.
+    const CsvTable table = log("push", "rigid");
+    double pushed = 0.0;
+    for (std::size_t row = 0; row < table.rows(); ++row) {
+        if (table.number(row, "person_fz") < -19.5) {
+            pushed = std::max(pushed, 0.5 * (table.number(row, "ur5e_meas_fz") + table.number(row, "panda_meas_fz")));
+        }
+    }
+    EXPECT_GT(pushed, 0.9 * 69.6);
+}
+
+TEST_F(DualArmBoxScene, ThreeArmsHoldTheBoxInEveryExperimentOnBothPlants)
+{
+    check_scene({"three_arms", {"ur5e", "panda", "b_panda"}, 30.0});
+}
+
+// The LWR 4 pair as a scene (examples/scenes/lwr4_pair.json, the same MJCF and start posture):
+// the scenario naming it runs at dynamic sizes through the MuJoCo adapter (MujocoArms) and, on
+// the rigid plant, the scene's weld on MuJoCo's arm dynamics instead of lwr4_dynamics.hpp's
+// recursion. Both are the same physics, so the logs agree with the fixed-size run's to the
+// solvers' rounding (the CSV's 10 digits: measured within 1e-7 N).
+TEST(DualArmBoxInput, TheLwr4PairSceneGivesTheFixedSizeRun)
+{
+    const fs::path directory = example_tests::fresh_directory(output_root, "lwr4_pair_scene");
+    for (const char* name : {"push", "add_mass"}) {
+        const std::string text = example_tests::read_file(box_dir + "/scenarios/" + name + ".json");
+        const std::string edited =
+            "\"scene\": \"" + box_dir + "/../scenes/lwr4_pair.json\", \"name\": \"" + name + "_scene\"";
+        ASSERT_TRUE(example_tests::write_edited(text, "\"name\": \"" + std::string(name) + "\"", edited,
+                                                directory / (std::string(name) + "_scene.json")));
+    }
+    const std::string common = " --plant both --duration 2.5 --no-plots --quiet --no-minimum-squeeze --output out";
+    const ProgramRun scene = example_tests::run_program(
+        program, directory, "--scenario push_scene.json --scenario add_mass_scene.json" + common);
+    ASSERT_EQ(scene.exit_code, 0) << scene.output;
+    const ProgramRun fixed = example_tests::run_program(program, directory, "--experiment push,add_mass" + common);
+    ASSERT_EQ(fixed.exit_code, 0) << fixed.output;
+    for (const std::string name : {"push", "add_mass"}) {
+        for (const std::string plant : {"mujoco", "rigid"}) {
+            const CsvTable a((directory / "out" / (name + "_" + plant + ".csv")).string());
+            const CsvTable b((directory / "out" / (name + "_scene_" + plant + ".csv")).string());
+            ASSERT_EQ(a.rows(), b.rows()) << name << " " << plant;
+            for (const std::string column : {"z", "left_pred_fz", "right_pred_fz", "left_meas_fz", "right_meas_fz",
+                                              "left_meas_tx", "right_meas_ty", "tau_c_3", "box_mass"}) {
+                double worst = 0.0;
+                for (std::size_t row = 0; row < a.rows(); ++row) {
+                    worst = std::max(worst, std::abs(a.number(row, column) - b.number(row, column)));
+                }
+                EXPECT_LT(worst, 1e-5) << name << " " << plant << " " << column;
+            }
+        }
+    }
+}
+
 TEST(DualArmBoxInput, MalformedScenariosFailWithFileJsonPathAndProblem)
 {
     const fs::path directory = example_tests::fresh_directory(output_root, "malformed");
@@ -291,7 +410,7 @@ TEST(DualArmBoxInput, InvalidOptionsAreRefusedBeforeAnythingRuns)
     for (const std::string options :
          {"--duration nan", "--duration -1", "--duration inf", "--friction nan", "--friction 0", "--friction 1e400",
           "--plant foo", "--experiment juggle", "--seed -1", "--output ''", "--no-such-option", "--duration 0.5",
-          "--friction 50", "--log-every 0", "--log-every 2.5"}) {
+          "--friction 50", "--log-every 0", "--log-every 2.5", "--scene octopus"}) {
         const std::string output = contains(options, "--output") ? "" : " --output out";
         const ProgramRun result = example_tests::run_program(program, directory, options + output + " --no-plots");
         EXPECT_EQ(result.exit_code, 2) << options << ": " << result.output;
@@ -307,7 +426,8 @@ TEST(DualArmBoxInput, HelpNamesTheShippedFilesRelativeToTheRepository)
     EXPECT_EQ(help.exit_code, 0) << help.output;
     EXPECT_TRUE(contains(help.output, "examples/box/scenarios")) << help.output;
     EXPECT_FALSE(contains(help.output, box_dir)) << help.output;
-    for (const char* option : {"--plant", "--experiment", "--duration", "--friction", "--seed", "--output"}) {
+    for (const char* option :
+         {"--plant", "--experiment", "--scene", "--duration", "--friction", "--seed", "--output"}) {
         EXPECT_TRUE(contains(help.output, option)) << option;
     }
 }
@@ -319,6 +439,16 @@ TEST(DualArmBoxInput, MissingOrUnwritableFilesAreExitCodeFour)
     EXPECT_EQ(missing.exit_code, 4) << missing.output;
     EXPECT_TRUE(example_tests::is_one_line(missing.output, "dual_arm_box: cannot read nope.json: No such file or directory"))
         << missing.output;
+    // A scenario naming a scene file that is not there: the same, before anything runs.
+    const std::string hold = example_tests::read_file(box_dir + "/scenarios/hold.json");
+    ASSERT_TRUE(example_tests::write_edited(hold, "\"name\": \"hold\"",
+                                            "\"name\": \"hold\", \"scene\": \"nope_scene.json\"",
+                                            directory / "on_nothing.json"));
+    const ProgramRun scene =
+        example_tests::run_program(program, directory, "--scenario on_nothing.json --no-plots --quiet");
+    EXPECT_EQ(scene.exit_code, 4) << scene.output;
+    EXPECT_TRUE(contains(scene.output, "cannot read nope_scene.json")) << scene.output;
+    EXPECT_FALSE(fs::exists(directory / "out")) << scene.output;
     const ProgramRun output = example_tests::run_program(
         program, directory, "--experiment hold --plant rigid --no-plots --quiet --output /proc/nope");
     EXPECT_EQ(output.exit_code, 4) << output.output;

@@ -3,6 +3,7 @@
 // joint-space inertia (against KDL on the URDF where kdl_parser is found, and against MuJoCo's own
 // URDF compilation), and a short hold in MuJoCo keeps the object with no slip and every QP tick
 // feasible. The scene reader refuses malformed files naming the field.
+#include "../box/scene_box.hpp"
 #include "scene_hold.hpp"
 #include "scene_rigid.hpp"
 
@@ -582,6 +583,45 @@ TEST(LeastSqueezeAtRest, NormalForcesPerSceneAndObjective)
         }
     }
     std::printf("least squeeze against the closed forms: %.1e (relative)\n", worst);
+}
+
+// The box experiments' scene plants (examples/box/scene_box.hpp) on three arms, pushed (20 N
+// down from 0.2 s) and loaded (0.25 kg at 0.5 s): each palm's measured wrench on the object, the
+// push and gravity give the object's acceleration (Newton's second law, m a = m g + F_person +
+// sum_i f_i, with the plant's current mass). In MuJoCo the contact forces are the constraint
+// solver's (mj_contactForce) and the acceleration its qacc; on the rigid plant the weld's
+// constraint wrenches and the solve's acceleration. A wrong sign, frame or palm in the measured
+// wrenches, a push or mass not applied, breaks it by newtons.
+TEST(SceneBoxPlants, MeasuredPalmWrenchesGiveTheObjectsAcceleration)
+{
+    const scenes::Scene scene = scenes::read_scene(scene_dir + "/three_arms.json");
+    box_example::BoxScenario scenario;
+    scenario.duration = 1.0;
+    scenario.box_mass = 0.8;
+    scenario.controller.minimum_normal_force = 30.0;
+    scenario.push = box_example::Push{};
+    scenario.push->start = 0.2;
+    scenario.push->force = 20.0;
+    scenario.push->ramp = 0.2;
+    scenario.push->hold = 0.2;
+    scenario.added_mass = box_example::AddedMass{0.5, 0.25, 2.0, 0.25};
+    for (const bool rigid : {false, true}) {
+        const box_example::SceneRun run = box_example::run_scene_experiment(scene, scenario, rigid);
+        ASSERT_FALSE(run.dropped) << rigid;
+        ASSERT_EQ(run.palm_count(), 3u);
+        double worst = 0.0;
+        for (const auto& row : run.log) {
+            Eigen::Vector3d force = row.box_mass * Eigen::Vector3d(0, 0, -9.81) + row.disturbance.head<3>();
+            for (std::size_t i = 0; i < run.palm_count(); ++i) {
+                force += row.measured_world[i].head<3>();
+            }
+            worst = std::max(worst, (row.box_mass * row.box_acceleration - force).norm());
+        }
+        EXPECT_NEAR(run.log.back().box_mass, 1.05, 1e-12) << rigid;
+        EXPECT_LT(worst, 1e-6) << rigid;
+        std::printf("%s plant: Newton's second law of the object from the measured palm wrenches: %.3g N\n",
+                    rigid ? "rigid" : "MuJoCo", worst);
+    }
 }
 
 }  // namespace
