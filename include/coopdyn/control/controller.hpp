@@ -109,12 +109,20 @@ struct ControllerData {
     InternalMatrix hessian;
     InternalVector gradient;
     Eigen::Matrix<Scalar, Rows, 1> bounds;
-    QpSolver<Scalar, Internal, Rows> qp;
-    Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)> fallback_hessian;
-    Eigen::Matrix<Scalar, plus_one(Internal), 1> fallback_gradient;
-    Eigen::Matrix<Scalar, plus_one(Rows), plus_one(Internal)> fallback_constraints;
-    Eigen::Matrix<Scalar, plus_one(Rows), 1> fallback_bounds;
-    QpSolver<Scalar, plus_one(Internal), plus_one(Rows)> fallback_qp;
+    /// The contact QP and its least-violating fallback are solved by one QpSolver type, (n + 1)
+    /// variables and (m + 1) rows, so that it is compiled once, not for two sizes (it was a tenth
+    /// of the controller's compile time; docs/performance.md, "Compile time and CI"). The contact
+    /// QP in z is posed there in (z, t): H' = blkdiag(H, eta), g' = (g, 0), rows [C, 0; 0, -1],
+    /// d' = (d, 0) (padded_problem). t = 0 at the unconstrained minimum and no row moves it
+    /// (none has a t entry but -t <= 0, which t = 0 satisfies), so the iterates are the contact
+    /// QP's own; the fallback's rows are [C, -|c|; 0, -1] (controller_fallback).
+    using PaddedSolver = QpSolver<Scalar, plus_one(Internal), plus_one(Rows)>;
+    Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)> padded_hessian;
+    Eigen::Matrix<Scalar, plus_one(Internal), 1> padded_gradient;
+    Eigen::Matrix<Scalar, plus_one(Rows), plus_one(Internal)> padded_constraints;  // the fallback's (construction only)
+    Eigen::Matrix<Scalar, plus_one(Rows), 1> padded_bounds;
+    PaddedSolver qp;           ///< the contact QP, padded
+    PaddedSolver fallback_qp;  ///< the least-violating fallback
     JointVector joint_scratch;
     bool warm = false;  ///< the QP solved last tick (its active set starts this one)
 };
@@ -143,27 +151,31 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       hessian(InternalMatrix::Zero(6 * (model.arms() - 1), 6 * (model.arms() - 1))),
       gradient(InternalVector::Zero(6 * (model.arms() - 1))),
       bounds(Eigen::Matrix<Scalar, Rows, 1>::Zero(model.rows())),
-      qp(model.contact_qp_constraints()),  // C is constant: set once, each tick solves with H, g, d
-      fallback_hessian(Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)>::Zero(6 * model.arms() - 5,
-                                                                                           6 * model.arms() - 5)),
-      fallback_gradient(Eigen::Matrix<Scalar, plus_one(Internal), 1>::Zero(6 * model.arms() - 5)),
-      fallback_constraints(
+      padded_hessian(Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)>::Zero(6 * model.arms() - 5,
+                                                                                         6 * model.arms() - 5)),
+      padded_gradient(Eigen::Matrix<Scalar, plus_one(Internal), 1>::Zero(6 * model.arms() - 5)),
+      padded_constraints(
           Eigen::Matrix<Scalar, plus_one(Rows), plus_one(Internal)>::Zero(model.rows() + 1, 6 * model.arms() - 5)),
-      fallback_bounds(Eigen::Matrix<Scalar, plus_one(Rows), 1>::Zero(model.rows() + 1)),
+      padded_bounds(Eigen::Matrix<Scalar, plus_one(Rows), 1>::Zero(model.rows() + 1)),
+      qp(6 * model.arms() - 5, model.rows() + 1),
       fallback_qp(6 * model.arms() - 5, model.rows() + 1),
       joint_scratch(JointVector::Zero(model.joints()))
 {
     dynamics.form_projection_matrices = false;
-    // The fallback's rows [C, -|c|; 0, -1] (controller_fallback) depend on the model only.
+    // Both QPs' rows depend on the model only: set once, each tick solves with H', g', d'. The
+    // contact QP's [C, 0; 0, -1] first, then the fallback's [C, -|c|; 0, -1].
     const Index n = hessian.rows();
     const Index m = bounds.size();
-    fallback_constraints.topLeftCorner(m, n) = model.contact_qp_constraints();
-    fallback_constraints.col(n).head(m) = -model.row_norms();
-    fallback_constraints(m, n) = Scalar(-1);
-    fallback_qp.set_constraints(fallback_constraints);
-    if (model.qp_options().iteration_limit > 0) {
-        qp.set_iteration_limit(model.qp_options().iteration_limit);
-        fallback_qp.set_iteration_limit(model.qp_options().iteration_limit);
+    padded_constraints.topLeftCorner(m, n) = model.contact_qp_constraints();
+    padded_constraints(m, n) = Scalar(-1);
+    qp.set_constraints(padded_constraints);
+    padded_constraints.col(n).head(m) = -model.row_norms();
+    fallback_qp.set_constraints(padded_constraints);
+    // The contact QP keeps the step cap of its own size, 10 (n + m), not the padded one's.
+    const int limit = model.qp_options().iteration_limit;
+    qp.set_iteration_limit(limit > 0 ? limit : PaddedSolver::default_iteration_limit(n, m));
+    if (limit > 0) {
+        fallback_qp.set_iteration_limit(limit);
     }
 }
 
@@ -239,23 +251,31 @@ template <typename Model, typename Data> void controller_contact_qp(const Model&
     }
 }
 
+/// H' = blkdiag(H, eta), g' = (g, 0), d' = (d, 0): the contact QP's H, g, d padded to the (n + 1)
+/// x (m + 1) problems of both QPs (ControllerData::PaddedSolver).
+template <typename Data> void padded_problem(Data& data, typename Data::Scalar eta) noexcept
+{
+    using Scalar = typename Data::Scalar;
+    const Index n = data.hessian.rows();
+    const Index m = data.bounds.size();
+    data.padded_hessian.setZero();
+    data.padded_hessian.topLeftCorner(n, n) = data.hessian;
+    data.padded_hessian(n, n) = eta;
+    data.padded_gradient.head(n) = data.gradient;
+    data.padded_gradient(n) = Scalar(0);
+    data.padded_bounds.head(m) = data.bounds;
+    data.padded_bounds(m) = Scalar(0);
+}
+
 /// The least-violating squeeze: min objective + rho s^2 s.t. C z - |a_k| s <= d, -s <= 0, with
 /// rho = fallback_weight max_k H_kk. Always feasible (a large s satisfies every row). Returns
 /// whether it solved; writes z into data.squeeze and s into data.fallback_violation.
 template <typename Model, typename Data> bool controller_fallback(const Model& model, Data& data) noexcept
 {
-    using Scalar = typename Model::Scalar;
     const Index n = data.hessian.rows();
-    const Index m = data.bounds.size();
-    data.fallback_hessian.setZero();
-    data.fallback_hessian.topLeftCorner(n, n) = data.hessian;
-    data.fallback_hessian(n, n) = model.qp_options().fallback_weight * data.hessian.diagonal().maxCoeff();
-    data.fallback_gradient.head(n) = data.gradient;
-    data.fallback_gradient(n) = Scalar(0);
-    data.fallback_bounds.head(m) = data.bounds;
-    data.fallback_bounds(m) = Scalar(0);
     // [C, -|c|; 0, -1] is constant: set once when the data was made (ControllerData's constructor).
-    const auto& result = data.fallback_qp.solve(data.fallback_hessian, data.fallback_gradient, data.fallback_bounds);
+    padded_problem(data, model.qp_options().fallback_weight * data.hessian.diagonal().maxCoeff());
+    const auto& result = data.fallback_qp.solve(data.padded_hessian, data.padded_gradient, data.padded_bounds);
     data.qp_iterations += result.iterations;
     if (result.status != QpStatus::solved) {
         return false;
@@ -271,8 +291,11 @@ template <typename Model, typename Data> void controller_solve_squeeze(const Mod
 {
     using Scalar = typename Model::Scalar;
     const bool warm = data.warm && model.qp_options().warm_start;
-    const auto& result = warm ? data.qp.solve_warm(data.hessian, data.gradient, data.bounds)
-                              : data.qp.solve(data.hessian, data.gradient, data.bounds);
+    // eta = max_k H_kk: t's pivot passes the pivot policy and leaves its scale, max_k H_kk, as it
+    // is, so H' is refused exactly when H is.
+    padded_problem(data, data.hessian.diagonal().maxCoeff());
+    const auto& result = warm ? data.qp.solve_warm(data.padded_hessian, data.padded_gradient, data.padded_bounds)
+                              : data.qp.solve(data.padded_hessian, data.padded_gradient, data.padded_bounds);
     data.qp_ran = true;
     data.qp_status = result.status;
     data.qp_iterations = result.iterations;
@@ -280,7 +303,7 @@ template <typename Model, typename Data> void controller_solve_squeeze(const Mod
     data.fallback_violation = Scalar(0);
     data.warm = result.status == QpStatus::solved;
     if (data.warm) {
-        data.squeeze = result.x;
+        data.squeeze = result.x.head(data.hessian.rows());
         data.status = ControlStatus::ok;
         return;
     }

@@ -313,7 +313,10 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::build_rows()
     // the coordinates of w's internal part: SqueezeObjective); each tick only rotates B per
     // contact, which keeps it. Checked once here, to rounding.
     using std::abs;
-    const Eigen::Matrix<Scalar, Internal, Internal> gram = body_internal_basis_.transpose() * body_internal_basis_;
+    // Coefficient-based products here and below: operator* at these sizes instantiates Eigen's
+    // GEMM kernels, a third of this constructor's compile time, for one-off setup arithmetic
+    // (docs/performance.md, "Compile time and CI").
+    const Eigen::Matrix<Scalar, Internal, Internal> gram = body_internal_basis_.transpose().lazyProduct(body_internal_basis_);
     Scalar departure(0);
     for (Index j = 0; j < internal; ++j) {
         for (Index k = 0; k < internal; ++k) {
@@ -331,9 +334,9 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::build_rows()
         Eigen::Matrix<Scalar, 6, Internal> in_contact_frame(6, internal);
         rotate_stack_back(contact_rotation(i), body_internal_basis_.template middleRows<6>(6 * i), in_contact_frame);
         contact_qp_constraints_.middleRows(row_offset(i), row_count(i)) =
-            friction_rows_.middleRows(row_offset(i), row_count(i)) * in_contact_frame;
+            friction_rows_.middleRows(row_offset(i), row_count(i)).lazyProduct(in_contact_frame);
         const auto moment_rows = body_internal_basis_.template middleRows<3>(6 * i + 3);
-        moment_gram_ += moment_rows.transpose() * moment_rows;
+        moment_gram_ += moment_rows.transpose().lazyProduct(moment_rows);
     }
 }
 

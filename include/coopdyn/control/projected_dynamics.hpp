@@ -35,6 +35,7 @@
 #include "coopdyn/numerics/fixed_llt.hpp"
 #include "coopdyn/numerics/householder_qr.hpp"
 #include "coopdyn/numerics/pivot_policy.hpp"
+#include "coopdyn/numerics/triangular_solve.hpp"
 #include "coopdyn/spatial/spatial_vector.hpp"
 
 #include <algorithm>
@@ -460,7 +461,7 @@ void ProjectedDynamics<Scalar, Arms, Joints>::constraint_pseudo_inverse_times(
     auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
     auto& reduced = reduced_;
     reduced.noalias() = internal_basis.transpose().lazyProduct(x);
-    reduced_r().transpose().template triangularView<Eigen::Lower>().solveInPlace(reduced);
+    solve_upper_transpose_in_place(reduced_r(), reduced);  // R^-T: plain loops, numerics/triangular_solve.hpp
     out.noalias() = reduced_q_.template leftCols<Internal>(reduced.size()).lazyProduct(reduced);
 }
 
@@ -474,7 +475,7 @@ void ProjectedDynamics<Scalar, Arms, Joints>::constraint_transpose_pseudo_invers
     auto& out = const_cast<Eigen::MatrixBase<DerivedOut>&>(out_);
     auto& reduced = reduced_;
     reduced.noalias() = reduced_q_.template leftCols<Internal>(reduced.size()).transpose().lazyProduct(y);
-    reduced_r().template triangularView<Eigen::Upper>().solveInPlace(reduced);
+    solve_upper_in_place(reduced_r(), reduced);  // R^-1
     out.noalias() = internal_basis.lazyProduct(reduced);
 }
 
