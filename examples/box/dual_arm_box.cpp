@@ -233,16 +233,17 @@ int run(const CommandLine& command, std::vector<BoxScenario> scenarios,
     return 0;
 }
 
-}  // namespace
+/// The flags that switch something off, bound by add_options and turned into CommandLine's switches.
+struct NegativeFlags {
+    bool no_plots = false;
+    bool quiet = false;
+    bool no_minimum_squeeze = false;
+};
 
-int main(int argc, char** argv)
+/// Every option and flag of the command line (docs/dual-arm-box.md, "Options"), bound to `command`
+/// and `flags`.
+void add_options(CLI::App& app, CommandLine& command, NegativeFlags& flags)
 {
-    CommandLine command;
-    CLI::App app{"dual_arm_box: the dual-arm box experiments of Lin et al. (section IV, Figs. 5-8) in simulation.\n"
-                 "Two 7-joint arms (or any scene's arms: --scene, a scenario's \"scene\") hold a box by friction\n"
-                 "with coopdyn's projected inverse-dynamics controller while a person pushes it, loads it or grabs\n"
-                 "it. Writes CSV logs, gnuplot scripts and PNG plots to --output. Docs: docs/dual-arm-box.md",
-                 "dual_arm_box"};
     app.option_defaults()->always_capture_default();
     app.add_option("--experiment", command.experiments, "Shipped experiments to run: hold, push, add_mass, circle or all")
         ->delimiter(',')
@@ -282,23 +283,34 @@ int main(int argc, char** argv)
                    "Write every N-th tick to the CSV logs (and so to the plots); the table still uses every tick")
         ->check(example_common::decimal_positive())
         ->type_name("N");
-    bool no_plots = false;
-    app.add_flag("--no-plots", no_plots, "Do not run gnuplot (the scripts are still written)");
-    bool quiet = false;
-    app.add_flag("--quiet", quiet, "No progress line");
-    bool no_minimum_squeeze = false;
-    app.add_flag("--no-minimum-squeeze", no_minimum_squeeze,
+    app.add_flag("--no-plots", flags.no_plots, "Do not run gnuplot (the scripts are still written)");
+    app.add_flag("--quiet", flags.quiet, "No progress line");
+    app.add_flag("--no-minimum-squeeze", flags.no_minimum_squeeze,
                  "Do not measure the smallest squeeze that holds the box in MuJoCo (a bisection of short holds, "
                  "about 1 s per experiment)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    CommandLine command;
+    CLI::App app{"dual_arm_box: the dual-arm box experiments of Lin et al. (section IV, Figs. 5-8) in simulation.\n"
+                 "Two 7-joint arms (or any scene's arms: --scene, a scenario's \"scene\") hold a box by friction\n"
+                 "with coopdyn's projected inverse-dynamics controller while a person pushes it, loads it or grabs\n"
+                 "it. Writes CSV logs, gnuplot scripts and PNG plots to --output. Docs: docs/dual-arm-box.md",
+                 "dual_arm_box"};
+    NegativeFlags flags;
+    add_options(app, command, flags);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& error) {
         const int code = app.exit(error);
         return code == 0 ? 0 : exit_usage;
     }
-    command.plots = !no_plots;
-    command.progress = !quiet;
-    command.minimum_squeeze = !no_minimum_squeeze;
+    command.plots = !flags.no_plots;
+    command.progress = !flags.quiet;
+    command.minimum_squeeze = !flags.no_minimum_squeeze;
 
     std::vector<BoxScenario> scenarios;
     try {
