@@ -23,41 +23,41 @@
 
 namespace box_example {
 
-/// What the experiment loop reads of the arms each tick (box_model.hpp's ArmTerms at run-time sizes).
+/// What the experiment loop reads of the arms each tick (box_model.hpp's ArmTerms at run-time
+/// sizes): M, h, J, Jdot qdot are views of the scene plant's input (read by the adapter once a tick,
+/// not copied again), the palms' frames its own.
 struct SceneArmTerms {
-    Eigen::MatrixXd inertia;
-    Eigen::VectorXd bias;
-    Eigen::MatrixXd jacobian;
-    Eigen::VectorXd jacobian_rate_qdot;
+    using Input = coopdyn::ControllerInput<double>;
+    explicit SceneArmTerms(const Input& input, std::size_t palm_count)
+        : inertia(input.inertia), bias(input.bias), jacobian(input.jacobian),
+          jacobian_rate_qdot(input.jacobian_rate_qdot), palm_position(palm_count, Eigen::Vector3d::Zero()),
+          palm_rotation(palm_count, Eigen::Matrix3d::Identity())
+    {
+    }
+    const decltype(Input::inertia)& inertia;
+    const decltype(Input::bias)& bias;
+    const decltype(Input::jacobian)& jacobian;
+    const decltype(Input::jacobian_rate_qdot)& jacobian_rate_qdot;
     std::vector<Eigen::Vector3d> palm_position;  ///< contact points in {w}
     std::vector<Eigen::Matrix3d> palm_rotation;  ///< contact frames (z: into the object)
 };
 
 /// A scene plant (scenes::MujocoScenePlant or scenes::RigidScenePlant) behind the interface
-/// run_experiment_on reads (the box plants'). Copies the plant's input once a tick (M, J of a
-/// 20-joint scene: a few microseconds) and allocates nothing per tick.
+/// run_experiment_on reads (the box plants'). Allocates nothing per tick. Not copyable: its terms
+/// view its own input.
 template <typename ScenePlant> class SceneBoxPlant {
 public:
     SceneBoxPlant(const scenes::SceneWorld& world, ScenePlant& plant)
-        : plant_(plant), input_(world.arms().arms(), world.arms().joints())
+        : plant_(plant), input_(world.arms().arms(), world.arms().joints()),
+          terms_(input_, static_cast<std::size_t>(world.arms().arms()))
     {
-        const auto K = static_cast<std::size_t>(world.arms().arms());
-        const Eigen::Index Q = world.arms().joints();
-        terms_.inertia.resize(Q, Q);
-        terms_.bias.resize(Q);
-        terms_.jacobian.resize(6 * world.arms().arms(), Q);
-        terms_.jacobian_rate_qdot.resize(6 * world.arms().arms());
-        terms_.palm_position.assign(K, Eigen::Vector3d::Zero());
-        terms_.palm_rotation.assign(K, Eigen::Matrix3d::Identity());
     }
+    SceneBoxPlant(const SceneBoxPlant&) = delete;
+    SceneBoxPlant& operator=(const SceneBoxPlant&) = delete;
 
     void begin_tick()
     {
         plant_.begin_tick(input_);
-        terms_.inertia = input_.inertia;
-        terms_.bias = input_.bias;
-        terms_.jacobian = input_.jacobian;
-        terms_.jacobian_rate_qdot = input_.jacobian_rate_qdot;
         for (std::size_t i = 0; i < terms_.palm_position.size(); ++i) {
             const coopdyn::Pose<double> palm = plant_.contact_pose(static_cast<Eigen::Index>(i));
             terms_.palm_position[i] = palm.position;
