@@ -13,10 +13,11 @@
 // with Baumgarte's beta_i = -2 omega_s (velocity error) - omega_s^2 (pose error) against drift.
 //
 // Needs arms that share no joint, their joints contiguous in q and in the contacts' order (checked
-// at construction): JointSpaceGrasp works arm by arm. A step allocates (the RK4 stages' dynamic
-// vectors): it is the simulated world, not the controller, whose tick does not. Each step runs
+// at construction): JointSpaceGrasp works arm by arm. The RK4 stages' vectors are sized at
+// construction (the simulated world is not a per-tick path: only the controller's tick is proven
+// not to allocate, docs/conventions.md). Each step runs
 // MuJoCo's smooth stages (kinematics, M, velocities, h; no collision, no constraint solver) four
-// times; the hold's real-time factor is 15-29 on the shipped scenes (CPU time, docs/performance.md,
+// times; the hold's real-time factor is 20-33 on the shipped scenes (CPU time, docs/performance.md,
 // "Scenes of any arms"; 5-8 with the four mj_forward calls it made before). This header belongs to
 // the examples.
 #pragma once
@@ -78,6 +79,12 @@ public:
         stabilisation_.assign(static_cast<std::size_t>(arms), Vector6::Zero());
         acceleration_ = Vector6::Zero();
         stage_acceleration_.resize(joints + 6);
+        stage_position_.resize(joints + 7);
+        stage_velocity_.resize(joints + 6);
+        for (std::size_t k = 0; k < 4; ++k) {
+            position_rate_[k].resize(joints + 7);
+            velocity_rate_[k].resize(joints + 6);
+        }
         joint_acceleration_.resize(joints);
         free_torque_.resize(joints);
     }
@@ -113,26 +120,24 @@ public:
         object_wrench_ = object_wrench;
         const double dt = period();
         const std::array<double, 4> fraction{0.0, 0.5, 0.5, 1.0};
-        std::array<Eigen::VectorXd, 4> position_rate;
-        std::array<Eigen::VectorXd, 4> velocity_rate;
-        Eigen::VectorXd position = state_;
-        Eigen::VectorXd velocity = velocity_;
+        stage_position_ = state_;
+        stage_velocity_ = velocity_;
         for (std::size_t k = 0; k < 4; ++k) {
             if (k > 0) {
-                advance(state_, velocity_, position_rate[k - 1], velocity_rate[k - 1], fraction[k] * dt, position, velocity);
-                evaluate(position, velocity);
+                advance(state_, velocity_, position_rate_[k - 1], velocity_rate_[k - 1], fraction[k] * dt,
+                        stage_position_, stage_velocity_);
+                evaluate(stage_position_, stage_velocity_);
             }
-            solve(position, velocity, tau, /*keep=*/k == 0);
-            position_rate[k] = rate_of_position(position, velocity);
-            velocity_rate[k] = stage_acceleration_;
+            solve(stage_position_, stage_velocity_, tau, /*keep=*/k == 0);
+            rate_of_position(stage_position_, stage_velocity_, position_rate_[k]);
+            velocity_rate_[k] = stage_acceleration_;
         }
-        const Eigen::VectorXd mean_position_rate =
-            (position_rate[0] + 2.0 * position_rate[1] + 2.0 * position_rate[2] + position_rate[3]) / 6.0;
-        const Eigen::VectorXd mean_velocity_rate =
-            (velocity_rate[0] + 2.0 * velocity_rate[1] + 2.0 * velocity_rate[2] + velocity_rate[3]) / 6.0;
-        advance(state_, velocity_, mean_position_rate, mean_velocity_rate, dt, position, velocity);
-        state_ = position;
-        velocity_ = velocity;
+        // RK4's weighted mean of the four rates, into the first stage's (coefficient-wise: no alias).
+        position_rate_[0] = (position_rate_[0] + 2.0 * position_rate_[1] + 2.0 * position_rate_[2] + position_rate_[3]) / 6.0;
+        velocity_rate_[0] = (velocity_rate_[0] + 2.0 * velocity_rate_[1] + 2.0 * velocity_rate_[2] + velocity_rate_[3]) / 6.0;
+        advance(state_, velocity_, position_rate_[0], velocity_rate_[0], dt, stage_position_, stage_velocity_);
+        state_ = stage_position_;
+        velocity_ = stage_velocity_;
     }
 
     /// Palm i's normal force on the object (N) at the last step's start: the weld's wrench along the
@@ -275,15 +280,13 @@ private:
         }
     }
 
-    /// d/dt of [q; p; quaternion coeffs (x, y, z, w)].
-    Eigen::VectorXd rate_of_position(const Eigen::VectorXd& position, const Eigen::VectorXd& velocity) const
+    /// d/dt of [q; p; quaternion coeffs (x, y, z, w)], into rate (sized joints + 7).
+    void rate_of_position(const Eigen::VectorXd& position, const Eigen::VectorXd& velocity, Eigen::VectorXd& rate) const noexcept
     {
         const Index joints = world_.arms().joints();
-        Eigen::VectorXd rate(joints + 7);
         rate.head(joints + 3) = velocity.head(joints + 3);
         const Eigen::Quaterniond orientation(position.segment<4>(joints + 3));
         rate.tail<4>() = coopdyn::quaternion_derivative_world(orientation, Eigen::Vector3d(velocity.tail<3>())).coeffs();
-        return rate;
     }
 
     void advance(const Eigen::VectorXd& position, const Eigen::VectorXd& velocity, const Eigen::VectorXd& position_rate,
@@ -316,6 +319,12 @@ private:
     std::vector<Vector6> measured_;  ///< the palms' wrenches on the object, {w}
     Vector6 object_wrench_ = Vector6::Zero();  ///< a push on the object's centre, this step
     Eigen::VectorXd stage_acceleration_;
+    // RK4's stage state and the four stages' rates, sized at construction (a step allocates none
+    // of them).
+    Eigen::VectorXd stage_position_;
+    Eigen::VectorXd stage_velocity_;
+    std::array<Eigen::VectorXd, 4> position_rate_;
+    std::array<Eigen::VectorXd, 4> velocity_rate_;
     Eigen::VectorXd joint_acceleration_;
     Eigen::VectorXd free_torque_;
 };

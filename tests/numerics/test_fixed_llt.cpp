@@ -6,6 +6,9 @@
 // - its solves agree with a full-pivoting LU solve of the same system and with Eigen's LLT
 //   factor, at the sizes the controller uses (6, 8, 12, 14, 15, 18, 21);
 // - an indefinite, a singular-by-rounding-free negative pivot and a NaN matrix are reported;
+// - DynamicLlt's own substitution loops (run-time sizes 1 to 21), on column-major and row-major
+//   right-hand sides and on a strided block of a wider row-major matrix (JointSpaceGrasp's
+//   layout), agree with a full-pivoting LU solve and with the explicit factor's products;
 // - Llt picks FixedLlt for fixed sizes up to 24 and DynamicLlt (Eigen's LLT) otherwise, and the
 //   deprecated header coopdyn/detail/fixed_cholesky.hpp still names them in detail::.
 //
@@ -105,6 +108,61 @@ TEST(FixedLlt, FactorsAndSolvesAtTheControllersSizes)
     check_size<15>();
     check_size<18>();
     check_size<21>();
+}
+
+Eigen::MatrixXd random_spd_dynamic(std::mt19937& rng, Index size, double condition)
+{
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    const Eigen::MatrixXd a = Eigen::MatrixXd::NullaryExpr(size, size, [&] { return uniform(rng); });
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(a);
+    const Eigen::MatrixXd q = qr.householderQ();
+    Eigen::VectorXd spectrum(size);
+    for (Index i = 0; i < size; ++i) {
+        spectrum(i) = size == 1 ? condition : std::pow(condition, static_cast<double>(i) / static_cast<double>(size - 1));
+    }
+    return q * spectrum.asDiagonal() * q.transpose();
+}
+
+TEST(DynamicLlt, SolvesRowAndColumnMajorRightHandSidesAtRunTimeSizes)
+{
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    std::mt19937 rng(77);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    double worst = 0.0;
+    for (Index size = 1; size <= 21; ++size) {
+        for (int trial = 0; trial < 4; ++trial) {
+            const double condition = std::pow(10.0, 2.0 * trial);
+            const Eigen::MatrixXd a = random_spd_dynamic(rng, size, condition);
+            coopdyn::DynamicLlt<Eigen::MatrixXd> factor(size);
+            ASSERT_EQ(factor.compute(a).info(), Eigen::Success);
+            const Eigen::MatrixXd lower = factor.matrixLLT().triangularView<Eigen::Lower>();
+            // The right-hand sides: columns 1-6 of an n x 8 row-major matrix (a strided block, as
+            // JointSpaceGrasp's [J^T, u, 0] is solved), and the same values column-major.
+            RowMajor wide = RowMajor::NullaryExpr(size, 8, [&] { return uniform(rng); });
+            const Eigen::MatrixXd rhs = wide.middleCols(1, 6);
+            const Eigen::MatrixXd expected = a.fullPivLu().solve(rhs);
+
+            auto row_major = wide.middleCols(1, 6);
+            const RowMajor untouched_left = wide.col(0), untouched_right = wide.col(7);
+            factor.solve_lower_in_place(row_major);
+            EXPECT_LT((lower * Eigen::MatrixXd(row_major) - rhs).norm(), 1e-13 * condition * rhs.norm());
+            factor.solve_upper_in_place(row_major);
+            EXPECT_EQ(RowMajor(wide.col(0)), untouched_left) << "a column outside the block was written";
+            EXPECT_EQ(RowMajor(wide.col(7)), untouched_right) << "a column outside the block was written";
+            worst = std::max(worst, (Eigen::MatrixXd(row_major) - expected).norm() / expected.norm() / condition);
+
+            Eigen::MatrixXd column_major = rhs;
+            factor.solve_lower_in_place(column_major);
+            EXPECT_LT((lower * column_major - rhs).norm(), 1e-13 * condition * rhs.norm());
+            Eigen::MatrixXd upper_only = rhs;
+            factor.solve_upper_in_place(upper_only);
+            EXPECT_LT((lower.transpose() * upper_only - rhs).norm(), 1e-13 * condition * rhs.norm());
+            factor.solve_upper_in_place(column_major);
+            worst = std::max(worst, (column_major - expected).norm() / expected.norm() / condition);
+        }
+    }
+    std::printf("DynamicLlt, sizes 1-21: solve error / condition %.1e\n", worst);
+    EXPECT_LT(worst, 2e-15);
 }
 
 TEST(FixedLlt, ReportsMatricesThatAreNotPositiveDefinite)

@@ -127,28 +127,72 @@ private:
 };
 
 /// Eigen::LLT with FixedLlt's triangular-solve names, for sizes chosen at run time.
+///
+/// The solves are plain substitution loops, not Eigen's triangular solver: called one column at a
+/// time (its many-column solver packs like a GEMM) on the few joints of an arm, Eigen's dispatch
+/// per column cost more than the arithmetic (15 % of a rigid scene plant's step in a profile,
+/// docs/performance.md, "Scenes of any arms"). A row-major X is substituted a whole row at a time,
+/// vectorised across its right-hand sides (JointSpaceGrasp's [J^T, u] side by side); a
+/// column-major X column by column.
 template <typename MatrixType> class DynamicLlt : public Eigen::LLT<MatrixType> {
 public:
+    using Scalar = typename MatrixType::Scalar;
     using Eigen::LLT<MatrixType>::LLT;
     template <typename Derived> DynamicLlt& compute(const Eigen::MatrixBase<Derived>& matrix)
     {
         Eigen::LLT<MatrixType>::compute(matrix);
         return *this;
     }
-    /// X <- L^-1 X, one column at a time (Eigen's many-column solver packs like a GEMM).
+    /// X <- L^-1 X (forward substitution).
     template <typename Derived> void solve_lower_in_place(const Eigen::MatrixBase<Derived>& X_out) const noexcept
     {
         auto& X = const_cast<Eigen::MatrixBase<Derived>&>(X_out);
-        for (Index j = 0; j < X.cols(); ++j) {
-            this->matrixL().solveInPlace(X.col(j));
+        const MatrixType& L = this->matrixLLT();
+        const Index n = L.rows();
+        COOPDYN_ASSERT(X.rows() == n, "DynamicLlt: X must have the factor's rows");
+        if constexpr (Derived::IsRowMajor) {
+            for (Index k = 0; k < n; ++k) {
+                X.row(k) /= L(k, k);
+                for (Index row = k + 1; row < n; ++row) {
+                    X.row(row) -= L(row, k) * X.row(k);
+                }
+            }
+        } else {
+            for (Index j = 0; j < X.cols(); ++j) {
+                for (Index k = 0; k < n; ++k) {
+                    const Scalar value = X(k, j) / L(k, k);
+                    X(k, j) = value;
+                    for (Index row = k + 1; row < n; ++row) {
+                        X(row, j) -= L(row, k) * value;
+                    }
+                }
+            }
         }
     }
-    /// X <- L^-T X, one column at a time.
+    /// X <- L^-T X (back substitution; row k of L^T is column k of L).
     template <typename Derived> void solve_upper_in_place(const Eigen::MatrixBase<Derived>& X_out) const noexcept
     {
         auto& X = const_cast<Eigen::MatrixBase<Derived>&>(X_out);
-        for (Index j = 0; j < X.cols(); ++j) {
-            this->matrixU().solveInPlace(X.col(j));
+        const MatrixType& L = this->matrixLLT();
+        const Index n = L.rows();
+        COOPDYN_ASSERT(X.rows() == n, "DynamicLlt: X must have the factor's rows");
+        if constexpr (Derived::IsRowMajor) {
+            for (Index k = n - 1; k >= 0; --k) {
+                for (Index row = k + 1; row < n; ++row) {
+                    X.row(k) -= L(row, k) * X.row(row);
+                }
+                X.row(k) /= L(k, k);
+            }
+        } else {
+            for (Index j = 0; j < X.cols(); ++j) {
+                for (Index k = n - 1; k >= 0; --k) {
+                    Scalar value = X(k, j);
+                    for (Index row = k + 1; row < n; ++row) {
+                        value -= L(row, k) * X(row, j);
+                    }
+                    X(k, j) = value / L(k, k);
+                }
+            }
         }
     }
 };
