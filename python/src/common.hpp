@@ -1,0 +1,53 @@
+// The Python module's shared helpers (docs/python.md): checked conversions of Python arguments to
+// Eigen matrices (any memory order, any strides, exact shapes), copies of results into numpy
+// arrays, and the entry points of the module's translation units.
+//
+// Every argument goes through to_matrix / to_vector: pybind11's own Eigen caster accepts any shape
+// for a dynamic matrix, and the library's per-tick functions check sizes only with debug
+// assertions, so a wrong shape would read out of bounds. Here it raises coopdyn.InvalidArgument (a
+// ValueError) naming the function, the argument and the expected shape.
+#pragma once
+
+#include <coopdyn/config.hpp>
+
+#include <Eigen/Core>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <string>
+
+namespace coopdyn::python {
+
+namespace py = pybind11;
+
+using Matrix = Eigen::MatrixXd;
+using Vector = Eigen::VectorXd;
+
+/// A dimension that may take any size (N, K, Q read from the argument itself).
+inline constexpr Index any_size = -1;
+
+/// Throws coopdyn::InvalidArgument (component `function`, parameter `name`): Python sees
+/// coopdyn.InvalidArgument, a ValueError.
+[[noreturn]] void fail_argument(const char* function, const char* name, const std::string& problem);
+
+/// `value` (a numpy array of any dtype convertible to float, memory order and strides, or a nested
+/// sequence) as a rows x cols matrix; any_size accepts any extent. `expected` spells the shape for
+/// the message, e.g. "(3, N)". A 2-D array only.
+Matrix to_matrix(py::handle value, const char* function, const char* name, Index rows, Index cols,
+                 const char* expected);
+/// `value` as a vector of `size` entries (any_size: any); a 1-D array only.
+Vector to_vector(py::handle value, const char* function, const char* name, Index size, const char* expected);
+
+/// A new numpy array (C order) holding a copy of `matrix` (2-D) or `vector` (1-D). read_only marks
+/// it not writeable: a field of a coopdyn object returned as a copy, so that writing into it raises
+/// instead of changing a copy nobody sees (docs/python.md, "Arrays").
+py::array matrix_copy(const Eigen::Ref<const Matrix>& matrix, bool read_only = false);
+py::array vector_copy(const Eigen::Ref<const Vector>& vector, bool read_only = false);
+
+/// The entry points, one per translation unit (module.cpp calls them in this order).
+void bind_errors(py::module_& module);
+void bind_numerics(py::module_& module);
+void bind_controller(py::module_& module);
+void bind_kernels(py::module_& module);
+
+}  // namespace coopdyn::python
