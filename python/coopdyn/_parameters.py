@@ -17,6 +17,10 @@ FIELDS = {
     _c.ContactPoint: ("frame", "friction"),
     _c.SqueezeObjective: ("internal_weight", "moment_weight", "torque_weight", "squeeze_weight"),
     _c.ContactQpOptions: ("warm_start", "iteration_limit", "fallback_weight"),
+    _c.RigidObject: ("mass", "inertia_body"),
+    _c.ImpedanceEndEffector: ("mass", "rotational_inertia", "translational_damping", "rotational_damping",
+                              "translational_stiffness", "rotational_stiffness"),
+    _c.Arm: ("end_effector", "grasp_body"),
     _c.ControllerParameters: ("joints", "contacts", "stiffness", "damping", "posture_stiffness",
                               "posture_damping", "objective", "qp"),
 }

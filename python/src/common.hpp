@@ -11,6 +11,7 @@
 #include <coopdyn/config.hpp>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
@@ -44,10 +45,67 @@ Vector to_vector(py::handle value, const char* function, const char* name, Index
 py::array matrix_copy(const Eigen::Ref<const Matrix>& matrix, bool read_only = false);
 py::array vector_copy(const Eigen::Ref<const Vector>& vector, bool read_only = false);
 
+// ---- templates shared by the bindings of classes -------------------------------------------
+
+inline std::string dims(Index rows, Index cols) { return "(" + std::to_string(rows) + ", " + std::to_string(cols) + ")"; }
+inline std::string dims(Index size) { return "(" + std::to_string(size) + ",)"; }
+
+/// A copy of an Eigen member as a numpy array: 1-D for a vector, 2-D otherwise.
+template <typename Derived> py::array copy_of(const Eigen::MatrixBase<Derived>& value, bool read_only)
+{
+    if constexpr (Derived::ColsAtCompileTime == 1) {
+        return vector_copy(value, read_only);
+    } else {
+        return matrix_copy(value, read_only);
+    }
+}
+
+/// Assigns `value` to an Eigen member, checked against the member's current shape (`symbol`, e.g.
+/// "(Q, Q)", names it in the message) or, with resizable, against its fixed extents only.
+template <typename Derived>
+void assign(Eigen::MatrixBase<Derived>& target, py::handle value, const char* owner, const char* name,
+            const char* symbol, bool resizable = false)
+{
+    const std::string expected = resizable ? std::string(symbol)
+                                           : std::string(symbol) + " = " +
+                                                 (Derived::ColsAtCompileTime == 1 ? dims(target.size())
+                                                                                  : dims(target.rows(), target.cols()));
+    if constexpr (Derived::ColsAtCompileTime == 1) {
+        target.derived() = to_vector(value, owner, name, resizable ? any_size : target.size(), expected.c_str());
+    } else {
+        target.derived() = to_matrix(value, owner, name, target.rows(), target.cols(), expected.c_str());
+    }
+}
+
+/// A read-write array property: the getter returns a read-only copy (assign the whole array to
+/// change it), the setter checks the shape.
+template <typename Class, typename Field, typename... Options>
+void def_array(py::class_<Class, Options...>& cls, const char* owner, const char* name, Field Class::*field,
+               const char* symbol, const char* doc, bool resizable = false)
+{
+    cls.def_property(
+        name, [field](const Class& self) { return copy_of(self.*field, true); },
+        [field, owner, name, symbol, resizable](Class& self, py::handle value) {
+            assign(self.*field, value, owner, name, symbol, resizable);
+        },
+        doc);
+}
+
+/// A read-only array property (an output): a read-only copy.
+template <typename Class, typename Field, typename... Options>
+void def_output(py::class_<Class, Options...>& cls, const char* name, Field Class::*field, const char* doc)
+{
+    cls.def_property_readonly(name, [field](const Class& self) { return copy_of(self.*field, true); }, doc);
+}
+
+Eigen::Quaterniond quaternion_from(py::handle value, const char* owner, const char* name);
+py::array quaternion_array(const Eigen::Quaterniond& q, bool read_only);
+
 /// The entry points, one per translation unit (module.cpp calls them in this order).
 void bind_errors(py::module_& module);
 void bind_numerics(py::module_& module);
 void bind_controller(py::module_& module);
 void bind_kernels(py::module_& module);
+void bind_spatial_model(py::module_& module);
 
 }  // namespace coopdyn::python

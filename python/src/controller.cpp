@@ -28,68 +28,6 @@ using Projection = ProjectedDynamics<double, X, X>;
 using PoseX = Pose<double>;
 using State = RigidBodyState<double>;
 
-std::string dims(Index rows, Index cols) { return "(" + std::to_string(rows) + ", " + std::to_string(cols) + ")"; }
-std::string dims(Index size) { return "(" + std::to_string(size) + ",)"; }
-
-/// A copy of an Eigen member as a numpy array: 1-D for a vector, 2-D otherwise.
-template <typename Derived> py::array copy_of(const Eigen::MatrixBase<Derived>& value, bool read_only)
-{
-    if constexpr (Derived::ColsAtCompileTime == 1) {
-        return vector_copy(value, read_only);
-    } else {
-        return matrix_copy(value, read_only);
-    }
-}
-
-/// Assigns `value` to an Eigen member, checked against the member's current shape (`symbol`, e.g.
-/// "(Q, Q)", names it in the message) or, with resizable, against its fixed extents only.
-template <typename Derived>
-void assign(Eigen::MatrixBase<Derived>& target, py::handle value, const char* owner, const char* name,
-            const char* symbol, bool resizable = false)
-{
-    const std::string expected = resizable ? std::string(symbol)
-                                           : std::string(symbol) + " = " +
-                                                 (Derived::ColsAtCompileTime == 1 ? dims(target.size())
-                                                                                  : dims(target.rows(), target.cols()));
-    if constexpr (Derived::ColsAtCompileTime == 1) {
-        target.derived() = to_vector(value, owner, name, resizable ? any_size : target.size(), expected.c_str());
-    } else {
-        target.derived() = to_matrix(value, owner, name, target.rows(), target.cols(), expected.c_str());
-    }
-}
-
-/// A read-write array property: the getter returns a read-only copy (assign the whole array to
-/// change it), the setter checks the shape.
-template <typename Class, typename Field, typename... Options>
-void def_array(py::class_<Class, Options...>& cls, const char* owner, const char* name, Field Class::*field,
-               const char* symbol, const char* doc, bool resizable = false)
-{
-    cls.def_property(
-        name, [field](const Class& self) { return copy_of(self.*field, true); },
-        [field, owner, name, symbol, resizable](Class& self, py::handle value) {
-            assign(self.*field, value, owner, name, symbol, resizable);
-        },
-        doc);
-}
-
-/// A read-only array property (an output): a read-only copy.
-template <typename Class, typename Field, typename... Options>
-void def_output(py::class_<Class, Options...>& cls, const char* name, Field Class::*field, const char* doc)
-{
-    cls.def_property_readonly(name, [field](const Class& self) { return copy_of(self.*field, true); }, doc);
-}
-
-Eigen::Quaterniond quaternion_from(py::handle value, const char* owner, const char* name)
-{
-    const Vector q = to_vector(value, owner, name, 4, "(4,) = [x, y, z, w]");
-    return Eigen::Quaterniond(q(3), q(0), q(1), q(2));
-}
-
-py::array quaternion_array(const Eigen::Quaterniond& q, bool read_only)
-{
-    return vector_copy(q.coeffs(), read_only);
-}
-
 void bind_spatial(py::module_& module)
 {
     py::class_<PoseX> pose(module, "Pose",

@@ -140,6 +140,17 @@ py::array vector_copy(const Eigen::Ref<const Vector>& vector, bool read_only)
     return std::move(array);
 }
 
+Eigen::Quaterniond quaternion_from(py::handle value, const char* owner, const char* name)
+{
+    const Vector q = to_vector(value, owner, name, 4, "(4,) = [x, y, z, w]");
+    return Eigen::Quaterniond(q(3), q(0), q(1), q(2));
+}
+
+py::array quaternion_array(const Eigen::Quaterniond& q, bool read_only)
+{
+    return vector_copy(q.coeffs(), read_only);
+}
+
 void bind_errors(py::module_& module)
 {
     error_type = new_exception(module, "Error", PyExc_ValueError,
@@ -176,4 +187,5 @@ PYBIND11_MODULE(_coopdyn, module)
     coopdyn::python::bind_numerics(module);
     coopdyn::python::bind_controller(module);
     coopdyn::python::bind_kernels(module);
+    coopdyn::python::bind_spatial_model(module);
 }
