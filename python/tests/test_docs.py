@@ -1,0 +1,53 @@
+"""The Python examples of docs/python.md run as printed (in order, in one namespace), and what
+they say they print holds."""
+
+import pathlib
+import re
+
+import numpy as np
+import pytest
+
+DOC = pathlib.Path(__file__).resolve().parents[2] / "docs" / "python.md"
+
+
+def test_docs_python_examples_run():
+    blocks = re.findall(r"```python\n(.*?)```", DOC.read_text(), flags=re.S)
+    assert len(blocks) >= 4
+    namespace = {}
+    exec(compile(blocks[0], str(DOC), "exec"), namespace)
+    coopdyn = namespace["coopdyn"]
+    # The first example: status ok, 19.62 N per palm (m g / (2 mu)).
+    assert namespace["data"].status == coopdyn.ControlStatus.ok
+    np.testing.assert_allclose(namespace["data"].contact_frame_wrenches[2], 19.62, rtol=1e-6)
+    for block in blocks[1:]:
+        exec(compile(block, str(DOC), "exec"), namespace)
+    assert namespace["hold_box"](0.5) == pytest.approx(19.62, rel=1e-6)
+    assert namespace["hold_box"](0.3) == pytest.approx(9.81 / 0.3, rel=1e-6)
+    # The quick start: 10 N / 21.75 kg.
+    model = namespace["model"]
+    data = coopdyn.Data(model)
+    coopdyn.interaction_dynamics(model, data, coopdyn.RigidBodyState(), namespace["setpoints"],
+                                 namespace["disturbances"])
+    np.testing.assert_allclose(data.object_acceleration()[0], 10.0 / 21.75, rtol=1e-12)
+    assert namespace["simulator"].time == pytest.approx(1.0)
+
+
+def test_docs_contact_frames_match_the_readme_matrices():
+    """The quaternions of docs/python.md's first example are the README's frame matrices."""
+    import coopdyn
+    left = np.array([[0, 0, 1], [0, -1, 0], [1, 0, 0]], dtype=float)
+    right = np.array([[0, 0, -1], [0, 1, 0], [1, 0, 0]], dtype=float)
+    np.testing.assert_allclose(coopdyn.Pose([0, 0, 0], np.sqrt(0.5) * np.array([1, 0, 1, 0])).rotation(), left, atol=1e-15)
+    np.testing.assert_allclose(coopdyn.Pose([0, 0, 0], np.sqrt(0.5) * np.array([0, -1, 0, 1])).rotation(), right, atol=1e-15)
+
+
+def test_readme_python_example_runs():
+    readme = DOC.parents[1] / "README.md"
+    blocks = re.findall(r"```python\n(.*?)```", readme.read_text(), flags=re.S)
+    assert len(blocks) == 1
+    namespace = {}
+    exec(compile(blocks[0], str(readme), "exec"), namespace)
+    coopdyn = namespace["coopdyn"]
+    assert namespace["result"].status == coopdyn.QpStatus.solved
+    np.testing.assert_allclose(namespace["result"].x, [1.0, -1.0], atol=1e-12)
+    assert namespace["G"].shape == (6, 12)
