@@ -90,3 +90,40 @@ def test_solve_qp_refuses_wrong_shapes():
     assert error.value.parameter == "H"
     with pytest.raises(ValueError):
         coopdyn.solve_qp(H, [np.nan, 0, 0], np.zeros((1, 3)), np.zeros(1))
+
+
+def test_solve_qp_releases_the_gil():
+    """A Python thread keeps counting while solve_qp works on a large problem (~0.2 s): with the GIL
+    held through the call it could count only in the switch intervals around it (5 ms each)."""
+    import threading
+    import time
+
+    rng = np.random.default_rng(0)
+    n, m = 300, 900
+    H, g = np.eye(n), -1e3 * rng.standard_normal(n)
+    C, d = rng.standard_normal((m, n)), rng.uniform(0.5, 1.0, m)
+    counter = [0]
+    stop = threading.Event()
+
+    def spin():
+        while not stop.is_set():
+            counter[0] += 1
+
+    thread = threading.Thread(target=spin)
+    thread.start()
+    try:
+        time.sleep(0.05)
+        start_count, start = counter[0], time.perf_counter()
+        time.sleep(0.01)  # the spinner's rate while the main thread sleeps (GIL free)
+        rate = (counter[0] - start_count) / (time.perf_counter() - start)
+        before, start = counter[0], time.perf_counter()
+        result = coopdyn.solve_qp(H, g, C, d)
+        elapsed = time.perf_counter() - start
+        counted = counter[0] - before
+    finally:
+        stop.set()
+        thread.join()
+    assert result.status == coopdyn.QpStatus.solved
+    assert elapsed > 0.05, "the problem solved too fast to tell"
+    # Held GIL: at most about two switch intervals (10 ms) of counting. Released: most of the call.
+    assert counted > 4 * 0.010 * rate, (counted, rate, elapsed)
