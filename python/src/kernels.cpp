@@ -6,6 +6,7 @@
 
 #include <coopdyn/analysis/apparent_impedance.hpp>
 #include <coopdyn/analysis/internal_wrenches.hpp>
+#include <coopdyn/coordination/grasp_squeeze.hpp>
 #include <coopdyn/coordination/load_distribution.hpp>
 #include <coopdyn/dynamics/interaction_wrenches.hpp>
 #include <coopdyn/dynamics/udwadia_kalaba.hpp>
@@ -50,6 +51,21 @@ Matrix symmetric_stack(py::handle value, const char* function, const char* name,
         }
     }
     return stack;
+}
+
+/// The load weights of the dense form, checked: mass_weights (N,), inertia_weights (3, 3N).
+struct LoadWeights {
+    Vector mass;
+    Matrix inertia;
+};
+
+LoadWeights load_weights(py::handle mass_in, py::handle inertia_in, const char* function, Index arms)
+{
+    LoadWeights weights;
+    weights.mass = to_vector(mass_in, function, "mass_weights", arms, stack_shape("(N,)", arms).c_str());
+    weights.inertia = to_matrix(inertia_in, function, "inertia_weights", 3, 3 * arms,
+                                ("(3, 3N) = (3, " + std::to_string(3 * arms) + ")").c_str());
+    return weights;
 }
 
 py::array udwadia_kalaba_checked(py::handle m_in, py::handle a_in, py::handle b_in, py::handle sigma_in)
@@ -97,16 +113,48 @@ void bind_kernels(py::module_& module)
         [](py::handle r_in, py::handle mass_in, py::handle inertia_in) {
             constexpr const char* name = "weighted_grasp_inverse";
             const Offsets r = offsets(r_in, name);
-            const Index arms = r.cols();
-            const Vector mass = to_vector(mass_in, name, "mass_weights", arms, stack_shape("(N,)", arms).c_str());
-            const Matrix inertia = to_matrix(inertia_in, name, "inertia_weights", 3, 3 * arms,
-                                             ("(3, 3N) = (3, " + std::to_string(3 * arms) + ")").c_str());
-            return matrix_copy(weighted_grasp_inverse(r, mass, inertia));
+            const LoadWeights weights = load_weights(mass_in, inertia_in, name, r.cols());
+            return matrix_copy(weighted_grasp_inverse(r, weights.mass, weights.inertia));
         },
         py::arg("r"), py::arg("mass_weights"), py::arg("inertia_weights"),
         "weighted_grasp_inverse(r, mass_weights, inertia_weights) -> (6N, 6): G+_M of (25) with errata E2 "
         "(docs/coordination.md), G G+_M = I. mass_weights (N,) > 0, inertia_weights (3, 3N): the J*_i side by side, "
         "symmetric positive semi-definite. Raises InvalidModel for refused weights.");
+    module.def(
+        "load_distribution",
+        [](py::handle r_in, py::handle mass_in, py::handle inertia_in, py::handle wrench_in) {
+            constexpr const char* name = "load_distribution";
+            const Offsets r = offsets(r_in, name);
+            const LoadWeights weights = load_weights(mass_in, inertia_in, name, r.cols());
+            const Vector6<double> wrench = to_vector(wrench_in, name, "object_wrench", 6, "(6,)");
+            return vector_copy(load_distribution(r, weights.mass, weights.inertia, wrench));
+        },
+        py::arg("r"), py::arg("mass_weights"), py::arg("inertia_weights"), py::arg("object_wrench"),
+        "load_distribution(r, mass_weights, inertia_weights, object_wrench) -> (6N,): the desired end-effector "
+        "wrenches h_i^d = -(G+_M h_o^d)_i of (26) for the object wrench h_o^d (6,) (docs/coordination.md). Weights "
+        "as in weighted_grasp_inverse; with the end-effectors' own inertias it squeezes nothing. Raises InvalidModel "
+        "for refused weights.");
+    module.def(
+        "squeeze_wrenches",
+        [](py::handle r_in, py::handle mass_in, py::handle inertia_in, py::handle wrenches_in) {
+            constexpr const char* name = "squeeze_wrenches";
+            const Offsets r = offsets(r_in, name);
+            const Index arms = r.cols();
+            const LoadWeights weights = load_weights(mass_in, inertia_in, name, arms);
+            const Vector wrenches = to_vector(wrenches_in, name, "wrenches_on_object", 6 * arms,
+                                              stack_shape("(6N,)", 6 * arms).c_str());
+            std::vector<CentralInertia<double>> list;
+            for (Index i = 0; i < arms; ++i) {
+                const Matrix3<double> rotational = weights.inertia.middleCols<3>(3 * i);
+                list.emplace_back(weights.mass(i), rotational);
+            }
+            return vector_copy(squeeze_wrenches(list, r, wrenches));
+        },
+        py::arg("r"), py::arg("mass_weights"), py::arg("inertia_weights"), py::arg("wrenches_on_object"),
+        "squeeze_wrenches(r, mass_weights, inertia_weights, wrenches_on_object) -> (6N,): the squeeze "
+        "hbar - G+_M G hbar of the wrenches hbar (6N,) the arms apply to the object at the grasp points, relative to "
+        "the weights' non-squeezing distribution (ref. [23] of the first paper; docs/coordination.md). C++ takes the "
+        "weights as a list of CentralInertia first; here they are the dense arrays of weighted_grasp_inverse.");
     module.def("udwadia_kalaba", &udwadia_kalaba_checked, py::arg("M"), py::arg("A"), py::arg("b"), py::arg("h_sigma"),
                "udwadia_kalaba(M, A, b, h_sigma) -> (n,): the constraint wrench h of (18) for M xdd = h_sigma + h "
                "subject to A xdd = b (Gauss's principle (19); docs/dynamics.md). M (n, n) symmetric positive definite, "

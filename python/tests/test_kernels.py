@@ -171,3 +171,38 @@ def test_apparent_impedance_sums(rng):
     np.testing.assert_allclose(result.stiffness, sum(G @ K @ G.T for G, K in zip(Gi, Ki)), rtol=1e-12, atol=1e-12)
     with pytest.raises(ValueError):
         result.inertia[0, 0] = 1.0  # a read-only copy
+
+
+def block_formula_inverse(r, m, J):
+    """G+_M of (25) with errata E2 by its blocks (docs/coordination.md), for sum m_i r_i = 0."""
+    n = r.shape[1]
+    J_o = sum(J) + sum(m[i] * skew(r[:, i]) @ skew(r[:, i]).T for i in range(n))
+    J_o_inv = np.linalg.inv(J_o)
+    out = np.zeros((6 * n, 6))
+    for i in range(n):
+        out[6 * i:6 * i + 3, :3] = m[i] / m.sum() * np.eye(3)
+        out[6 * i:6 * i + 3, 3:] = m[i] * skew(r[:, i]).T @ J_o_inv
+        out[6 * i + 3:6 * i + 6, 3:] = J[i] @ J_o_inv
+    return out
+
+
+def test_load_distribution_and_squeeze_by_the_block_formula(rng):
+    n = 3
+    m = rng.uniform(0.5, 2.0, n)
+    p = rng.standard_normal((3, n))
+    r = p - (p @ m / m.sum())[:, None]
+    J = [random_spd(rng, 3) for _ in range(n)]
+    G_plus = block_formula_inverse(r, m, J)
+    h_o = rng.standard_normal(6)
+    # (26): h_i^d = -(G+_M h_o^d)_i.
+    np.testing.assert_allclose(coopdyn.load_distribution(r, m, np.hstack(J), h_o), -G_plus @ h_o, rtol=1e-10,
+                               atol=1e-12)
+    hbar = rng.standard_normal(6 * n)
+    squeeze = coopdyn.squeeze_wrenches(r, m, np.hstack(J), hbar)
+    np.testing.assert_allclose(squeeze, hbar - G_plus @ grasp_by_hand(r) @ hbar, rtol=1e-10, atol=1e-12)
+    # The squeeze moves nothing: G hbar_sq = 0; a non-squeezing distribution has none.
+    np.testing.assert_allclose(grasp_by_hand(r) @ squeeze, 0, atol=1e-12)
+    np.testing.assert_allclose(coopdyn.squeeze_wrenches(r, m, np.hstack(J), G_plus @ h_o), 0, atol=1e-12)
+    with pytest.raises(ValueError) as error:
+        coopdyn.load_distribution(r, m, np.hstack(J), np.zeros(5))
+    assert error.value.parameter == "object_wrench"
