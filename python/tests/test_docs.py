@@ -51,3 +51,19 @@ def test_readme_python_example_runs():
     assert namespace["result"].status == coopdyn.QpStatus.solved
     np.testing.assert_allclose(namespace["result"].x, [1.0, -1.0], atol=1e-12)
     assert namespace["G"].shape == (6, 12)
+
+
+def test_the_friction_sweep_example(tmp_path):
+    """examples/python/sweep_friction.py: m g / (2 mu) per palm over the sweep, margins >= 0, a plot."""
+    import importlib.util
+    pytest.importorskip("matplotlib")
+    path = DOC.parents[1] / "examples" / "python" / "sweep_friction.py"
+    spec = importlib.util.spec_from_file_location("sweep_friction", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    forces, margins = module.main(["--output", str(tmp_path)])
+    mus = np.linspace(0.2, 1.0, 9)
+    for i, m in enumerate((0.5, 2.0, 4.0)):
+        np.testing.assert_allclose(forces[i], m * 9.81 / (2 * mus), rtol=1e-6)
+    assert np.all(margins > -1e-9)
+    assert (tmp_path / "sweep_friction.png").stat().st_size > 10000
