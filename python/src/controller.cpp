@@ -340,8 +340,9 @@ void bind_controller_types(py::module_& module)
                                    }
                                    return contacts;
                                })
-        .def_property_readonly("objective", &ModelX::objective)
-        .def_property_readonly("qp_options", &ModelX::qp_options)
+        .def_property_readonly("objective", &ModelX::objective, py::return_value_policy::copy,
+                               "a copy: a model is constant once validated")
+        .def_property_readonly("qp_options", &ModelX::qp_options, py::return_value_policy::copy, "a copy")
         .def_property_readonly("stiffness", [](const ModelX& self) { return matrix_copy(self.stiffness(), true); })
         .def_property_readonly("damping", [](const ModelX& self) { return matrix_copy(self.damping(), true); })
         .def_property_readonly("posture_stiffness",

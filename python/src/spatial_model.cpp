@@ -134,7 +134,8 @@ void bind_model(py::module_& module)
              }),
              py::arg("object"), py::arg("arms"), py::arg("gravity") = py::none())
         .def_property_readonly("arms", &ModelX::arms, "N")
-        .def_property_readonly("object", &ModelX::object)
+        .def_property_readonly("object", &ModelX::object, py::return_value_policy::copy,
+                               "a copy: a model is constant once validated (set_end_effector changes an arm)")
         .def_property_readonly("gravity", [](const ModelX& self) { return vector_copy(self.gravity(), true); })
         .def("end_effector", [](const ModelX& self, Index arm) {
             if (arm < 0 || arm >= self.arms()) {
@@ -155,7 +156,8 @@ void bind_model(py::module_& module)
                            "fields are read-only copies made when read.");
     data.def(py::init<const ModelX&>(), py::arg("model"))
         .def_property_readonly("arms", &DataX::arms)
-        .def_readonly("object_state", &DataX::object_state, "the state last used (a view into the data)");
+        .def_property_readonly(
+            "object_state", [](const DataX& self) { return self.object_state; }, "a copy of the state last used");
     def_output(data, "object_rotation", &DataX::object_rotation, "R(q_o) (3, 3)");
     def_output(data, "object_rotational_inertia", &DataX::object_rotational_inertia, "J_o in {w} (3, 3), (9)");
     def_output(data, "grasp_offsets", &DataX::grasp_offsets, "r_i in {w} (3, N)");
@@ -288,7 +290,8 @@ void bind_simulator(py::module_& module)
             "every integrator stage (per_stage) or once (zero_order). An exception in it propagates (the step is not "
             "taken). Without inputs the setpoints and disturbances keep their values and the GIL is released.")
         .def("reset", &SimulatorX::reset, py::arg("state"), py::arg("time") = 0.0)
-        .def_property_readonly("state", &SimulatorX::state, py::return_value_policy::copy)
+        .def_property_readonly("state", &SimulatorX::state, py::return_value_policy::copy,
+                               "a copy of the object's state (change it with reset(state, time))")
         .def_property_readonly("time", &SimulatorX::time)
         .def_property_readonly("steps", &SimulatorX::steps)
         .def_property_readonly("time_step", &SimulatorX::time_step)

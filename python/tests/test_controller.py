@@ -182,6 +182,8 @@ def test_invalid_parameters_and_inputs():
     assert error.value.parameter == "posture_stiffness" and error.value.arm is None
 
     model = coopdyn.ControllerModel(two_palms())
+    model.objective.internal_weight = -1.0  # a copy: the validated model does not change
+    assert model.objective.internal_weight == 1.0
     inp = coopdyn.ControllerInput(model)
     with pytest.raises(coopdyn.InvalidArgument) as error:
         inp.inertia = np.eye(11)

@@ -168,3 +168,17 @@ def test_model_parameters_print_compare_and_pickle():
     other = pickle.loads(pickle.dumps(arm))
     other.end_effector.mass = 11.0  # a reference into `other`: writes go through
     assert other.end_effector.mass == 11.0 and other != arm
+
+
+def test_a_built_model_is_constant_from_python():
+    model = beam()
+    model.object.mass = 100.0  # a copy: the validated model does not change
+    assert model.object.mass == 1.75
+    arm = model.end_effector(0)
+    arm.mass = -1.0
+    with pytest.raises(coopdyn.InvalidModel):
+        model.set_end_effector(0, arm)
+    assert model.end_effector(0).mass == 10.0
+    arm.mass = 12.0
+    model.set_end_effector(0, arm)
+    assert model.end_effector(0).mass == 12.0
