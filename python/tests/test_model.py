@@ -182,3 +182,22 @@ def test_a_built_model_is_constant_from_python():
     arm.mass = 12.0
     model.set_end_effector(0, arm)
     assert model.end_effector(0).mass == 12.0
+
+
+def test_simulator_run_logs_a_free_body():
+    """Simulator.run's log against x(t) = F t^2 / (2 m) of the free assembly (no springs, dampers or
+    gravity: one body of 21.75 kg, Theorem 2 (31)) pushed by a constant 10 N."""
+    model = beam(stiffness=0.0, damping=0.0, gravity=[0.0, 0.0, 0.0])
+    simulator = coopdyn.Simulator(model, 1e-3)
+    simulator.disturbances.object = [10.0, 0, 0, 0, 0, 0]
+    log = simulator.run(250)
+    assert set(log) == {"time", "position", "orientation", "twist", "object_acceleration", "wrenches"}
+    assert log["wrenches"].shape == (250, 18) and log["position"].shape == (250, 3)
+    np.testing.assert_allclose(log["time"], np.arange(250) * 1e-3, atol=1e-15)
+    np.testing.assert_allclose(log["position"][:, 0], 10.0 * log["time"] ** 2 / (2 * 21.75), rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(log["object_acceleration"][:, 0], 10.0 / 21.75, rtol=1e-12)
+    np.testing.assert_allclose(log["orientation"], np.tile([0, 0, 0, 1.0], (250, 1)), atol=1e-15)
+    # The arms accelerate with the object, pushed by it alone: M_i xdd_i = h_i (hSigma_i = 0), so the
+    # wrench on arm i is h_i = m_i a = 10 kg x 0.4598 m/s^2 along x.
+    np.testing.assert_allclose(log["wrenches"][:, 6], 10.0 * 10.0 / 21.75, rtol=1e-12)
+    assert simulator.steps == 250 and simulator.time == pytest.approx(0.25)
