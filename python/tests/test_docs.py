@@ -29,7 +29,8 @@ def test_docs_python_examples_run():
     coopdyn.interaction_dynamics(model, data, coopdyn.RigidBodyState(), namespace["setpoints"],
                                  namespace["disturbances"])
     np.testing.assert_allclose(data.object_acceleration()[0], 10.0 / 21.75, rtol=1e-12)
-    assert namespace["simulator"].time == pytest.approx(1.0)
+    assert namespace["simulator"].time == pytest.approx(1.5)  # 1000 steps, then run(500)
+    assert namespace["log"]["wrenches"].shape == (500, 18)
 
 
 def test_docs_contact_frames_match_the_readme_matrices():
