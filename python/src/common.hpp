@@ -24,6 +24,14 @@ namespace py = pybind11;
 using Matrix = Eigen::MatrixXd;
 using Vector = Eigen::VectorXd;
 
+/// An array argument as it arrives from Python (any object numpy can convert), converted and
+/// checked by to_matrix / to_vector. Its own type only so that signatures read
+/// "r: numpy.typing.ArrayLike" in help() instead of "r: handle".
+struct ArrayLike {
+    py::handle value;
+    operator py::handle() const noexcept { return value; }  // NOLINT: implicit on purpose
+};
+
 /// A dimension that may take any size (N, K, Q read from the argument itself).
 inline constexpr Index any_size = -1;
 
@@ -85,7 +93,7 @@ void def_array(py::class_<Class, Options...>& cls, const char* owner, const char
 {
     cls.def_property(
         name, [field](const Class& self) { return copy_of(self.*field, true); },
-        [field, owner, name, symbol, resizable](Class& self, py::handle value) {
+        [field, owner, name, symbol, resizable](Class& self, ArrayLike value) {
             assign(self.*field, value, owner, name, symbol, resizable);
         },
         doc);
@@ -109,3 +117,21 @@ void bind_kernels(py::module_& module);
 void bind_spatial_model(py::module_& module);
 
 }  // namespace coopdyn::python
+
+namespace pybind11::detail {
+
+/// Accepts any object (the conversion and its checks happen in to_matrix / to_vector).
+template <> struct type_caster<coopdyn::python::ArrayLike> {
+    PYBIND11_TYPE_CASTER(coopdyn::python::ArrayLike, const_name("numpy.typing.ArrayLike"));
+    bool load(handle source, bool)
+    {
+        value.value = source;
+        return static_cast<bool>(source);
+    }
+    static handle cast(const coopdyn::python::ArrayLike& source, return_value_policy, handle)
+    {
+        return source.value.inc_ref();
+    }
+};
+
+}  // namespace pybind11::detail

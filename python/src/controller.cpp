@@ -48,7 +48,7 @@ void bind_spatial(py::module_& module)
     def_array(pose, "Pose", "position", &PoseX::position, "(3,)", "position (3,)");
     pose.def_property(
         "orientation", [](const PoseX& self) { return quaternion_array(self.orientation, true); },
-        [](PoseX& self, py::handle value) { self.orientation = quaternion_from(value, "Pose", "orientation"); },
+        [](PoseX& self, ArrayLike value) { self.orientation = quaternion_from(value, "Pose", "orientation"); },
         "unit quaternion [x, y, z, w] (not normalised here: the models refuse a non-unit one)");
     pose.def("rotation", [](const PoseX& self) { return matrix_copy(self.orientation.toRotationMatrix()); },
              "the rotation matrix (3, 3) of the orientation");
@@ -166,7 +166,7 @@ void bind_projection(py::module_& module)
 
     module.def(
         "projected_dynamics",
-        [](py::handle m_in, py::handle h_in, py::handle j_in, py::handle jdot_in, py::handle qdot_in, py::handle r_in) {
+        [](ArrayLike m_in, ArrayLike h_in, ArrayLike j_in, ArrayLike jdot_in, ArrayLike qdot_in, ArrayLike r_in) {
             constexpr const char* name = "projected_dynamics";
             const Matrix r = to_matrix(r_in, name, "r", 3, any_size, "(3, K)");
             const Index arms = r.cols();
@@ -198,7 +198,7 @@ K >= 2, Q >= 6K. Check .status. Releases the GIL.)doc");
 
     module.def(
         "object_jacobian",
-        [](py::handle r_in, py::handle j_in) {
+        [](ArrayLike r_in, ArrayLike j_in) {
             const Matrix r = to_matrix(r_in, "object_jacobian", "r", 3, any_size, "(3, K)");
             const Matrix jacobian = to_matrix(j_in, "object_jacobian", "J", 6 * r.cols(), any_size,
                                               ("(6K, Q) = (" + std::to_string(6 * r.cols()) + ", Q)").c_str());
@@ -212,7 +212,7 @@ K >= 2, Q >= 6K. Check .status. Releases the GIL.)doc");
         "(docs/model.md, \"Grasp Jacobians\"). r (3, K), J (6K, Q).");
     module.def(
         "constraint_jacobian",
-        [](py::handle r_in, py::handle j_in) {
+        [](ArrayLike r_in, ArrayLike j_in) {
             const Matrix r = to_matrix(r_in, "constraint_jacobian", "r", 3, any_size, "(3, K)");
             const Matrix jacobian = to_matrix(j_in, "constraint_jacobian", "J", 6 * r.cols(), any_size,
                                               ("(6K, Q) = (" + std::to_string(6 * r.cols()) + ", Q)").c_str());
@@ -226,7 +226,7 @@ K >= 2, Q >= 6K. Check .status. Releases the GIL.)doc");
         "(errata E10). r (3, K), J (6K, Q).");
     module.def(
         "internal_wrench_basis",
-        [](py::handle r_in) {
+        [](ArrayLike r_in) {
             const Matrix r = to_matrix(r_in, "internal_wrench_basis", "r", 3, any_size, "(3, K)");
             if (r.cols() < 2) {
                 fail_argument("internal_wrench_basis", "r", "must have K >= 2 columns, got " + std::to_string(r.cols()));
@@ -250,7 +250,7 @@ void bind_friction(py::module_& module)
 {
     module.def(
         "friction_margin",
-        [](const Friction& friction, py::handle wrench_in) {
+        [](const Friction& friction, ArrayLike wrench_in) {
             const Vector wrench = to_vector(wrench_in, "friction_margin", "wrench", 6, "(6,)");
             const Vector6<double> w = wrench;
             return coopdyn::friction_margin(checked_friction(friction), w);
@@ -261,7 +261,7 @@ void bind_friction(py::module_& module)
         "(N for force rows, N m for moment rows; docs/control.md).");
     module.def(
         "friction_margins",
-        [](const Friction& friction, py::handle wrench_in) {
+        [](const Friction& friction, ArrayLike wrench_in) {
             const Vector wrench = to_vector(wrench_in, "friction_margins", "wrench", 6, "(6,)");
             const Vector6<double> w = wrench;
             const FrictionMargins<double> margins = coopdyn::friction_margins(checked_friction(friction), w);

@@ -59,7 +59,7 @@ struct LoadWeights {
     Matrix inertia;
 };
 
-LoadWeights load_weights(py::handle mass_in, py::handle inertia_in, const char* function, Index arms)
+LoadWeights load_weights(ArrayLike mass_in, ArrayLike inertia_in, const char* function, Index arms)
 {
     LoadWeights weights;
     weights.mass = to_vector(mass_in, function, "mass_weights", arms, stack_shape("(N,)", arms).c_str());
@@ -68,7 +68,7 @@ LoadWeights load_weights(py::handle mass_in, py::handle inertia_in, const char* 
     return weights;
 }
 
-py::array udwadia_kalaba_checked(py::handle m_in, py::handle a_in, py::handle b_in, py::handle sigma_in)
+py::array udwadia_kalaba_checked(ArrayLike m_in, ArrayLike a_in, ArrayLike b_in, ArrayLike sigma_in)
 {
     constexpr const char* name = "udwadia_kalaba";
     const Matrix inertia = to_matrix(m_in, name, "M", any_size, any_size, "(n, n)");
@@ -91,17 +91,17 @@ py::array udwadia_kalaba_checked(py::handle m_in, py::handle a_in, py::handle b_
 void bind_kernels(py::module_& module)
 {
     module.def(
-        "grasp_matrix", [](py::handle r) { return matrix_copy(grasp_matrix(offsets(r, "grasp_matrix"))); }, py::arg("r"),
+        "grasp_matrix", [](ArrayLike r) { return matrix_copy(grasp_matrix(offsets(r, "grasp_matrix"))); }, py::arg("r"),
         "grasp_matrix(r) -> (6, 6N): G = [G_1 ... G_N] of (24), G_i = [[I, 0], [S(r_i), I]], with h_o = G hbar "
         "(23). r (3, N): grasp offsets from the object's centre of mass, {w} (docs/model.md).");
     module.def(
-        "constraint_matrix", [](py::handle r) { return matrix_copy(constraint_matrix(offsets(r, "constraint_matrix"))); },
+        "constraint_matrix", [](ArrayLike r) { return matrix_copy(constraint_matrix(offsets(r, "constraint_matrix"))); },
         py::arg("r"),
         "constraint_matrix(r) -> (6N, 6(N+1)): A of (14) for the rigid grasp A xdd = b; block row i is "
         "[[-I, S(r_i)], [0, -I]] in the object's columns and I in end-effector i's (docs/model.md).");
     module.def(
         "constraint_bias",
-        [](py::handle r_in, py::handle omega_in) {
+        [](ArrayLike r_in, ArrayLike omega_in) {
             const Offsets r = offsets(r_in, "constraint_bias");
             const Vector3<double> omega = to_vector(omega_in, "constraint_bias", "omega_o", 3, "(3,)");
             return vector_copy(constraint_bias(r, omega));
@@ -110,7 +110,7 @@ void bind_kernels(py::module_& module)
         "constraint_bias(r, omega_o) -> (6N,): b of (13), b_i = [S(w_o)^2 r_i; 0] (docs/model.md).");
     module.def(
         "weighted_grasp_inverse",
-        [](py::handle r_in, py::handle mass_in, py::handle inertia_in) {
+        [](ArrayLike r_in, ArrayLike mass_in, ArrayLike inertia_in) {
             constexpr const char* name = "weighted_grasp_inverse";
             const Offsets r = offsets(r_in, name);
             const LoadWeights weights = load_weights(mass_in, inertia_in, name, r.cols());
@@ -122,7 +122,7 @@ void bind_kernels(py::module_& module)
         "symmetric positive semi-definite. Raises InvalidModel for refused weights.");
     module.def(
         "load_distribution",
-        [](py::handle r_in, py::handle mass_in, py::handle inertia_in, py::handle wrench_in) {
+        [](ArrayLike r_in, ArrayLike mass_in, ArrayLike inertia_in, ArrayLike wrench_in) {
             constexpr const char* name = "load_distribution";
             const Offsets r = offsets(r_in, name);
             const LoadWeights weights = load_weights(mass_in, inertia_in, name, r.cols());
@@ -136,7 +136,7 @@ void bind_kernels(py::module_& module)
         "for refused weights.");
     module.def(
         "squeeze_wrenches",
-        [](py::handle r_in, py::handle mass_in, py::handle inertia_in, py::handle wrenches_in) {
+        [](ArrayLike r_in, ArrayLike mass_in, ArrayLike inertia_in, ArrayLike wrenches_in) {
             constexpr const char* name = "squeeze_wrenches";
             const Offsets r = offsets(r_in, name);
             const Index arms = r.cols();
@@ -161,7 +161,7 @@ void bind_kernels(py::module_& module)
                "A (m, n) of any rank, b (m,) consistent, h_sigma (n,).");
     module.def(
         "interaction_wrenches",
-        [](py::handle object_in, py::handle ee_in, py::handle r_in, py::handle omega_in, py::handle sigma_in) {
+        [](ArrayLike object_in, ArrayLike ee_in, ArrayLike r_in, ArrayLike omega_in, ArrayLike sigma_in) {
             constexpr const char* name = "interaction_wrenches";
             const Offsets r = offsets(r_in, name);
             const Index arms = r.cols();
@@ -179,7 +179,7 @@ void bind_kernels(py::module_& module)
         "r (3, N); omega_o (3,); h_sigma (6(N+1),) = [hSigma_o; hSigma_1; ...] of (15)-(16).");
     module.def(
         "internal_wrenches",
-        [](py::handle ee_in, py::handle r_in, py::handle omega_in, py::handle motion_in) {
+        [](ArrayLike ee_in, ArrayLike r_in, ArrayLike omega_in, ArrayLike motion_in) {
             constexpr const char* name = "internal_wrenches";
             const Offsets r = offsets(r_in, name);
             const Index arms = r.cols();
@@ -207,7 +207,7 @@ void bind_kernels(py::module_& module)
                                "K, the exact linearisation (errata E3)");
     module.def(
         "apparent_impedance",
-        [](py::handle object_in, py::handle inertia_in, py::handle damping_in, py::handle stiffness_in, py::handle r_in) {
+        [](ArrayLike object_in, ArrayLike inertia_in, ArrayLike damping_in, ArrayLike stiffness_in, ArrayLike r_in) {
             constexpr const char* name = "apparent_impedance";
             const Offsets r = offsets(r_in, name);
             const Index arms = r.cols();

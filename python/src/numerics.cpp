@@ -10,7 +10,7 @@ namespace {
 using QpResultX = QpResult<double, Eigen::Dynamic, Eigen::Dynamic>;
 
 /// The one-shot solve of min 1/2 x^T H x + g^T x s.t. C x <= d, every argument checked first.
-QpResultX solve(py::handle hessian_in, py::handle gradient_in, py::handle constraints_in, py::handle bounds_in)
+QpResultX solve(ArrayLike hessian_in, ArrayLike gradient_in, ArrayLike constraints_in, ArrayLike bounds_in)
 {
     constexpr const char* name = "solve_qp";
     const Matrix hessian = to_matrix(hessian_in, name, "H", any_size, any_size, "(n, n)");
