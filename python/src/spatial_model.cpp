@@ -117,70 +117,8 @@ void bind_parts(py::module_& module)
     def_array(disturbances, "Disturbances", "end_effectors", &DisturbancesX::end_effectors, "(6N,)", "htilde_i stacked (6N,)");
 }
 
-void bind_model(py::module_& module)
+void bind_input_check(py::module_& module)
 {
-    py::class_<ModelX>(module, "Model",
-                       "The cooperative system's constant part (docs/model.md): a RigidObject, N >= 1 Arms of "
-                       "ImpedanceEndEffector, gravity (3,). Validated at construction: raises InvalidModel naming the "
-                       "parameter and the arm.")
-        .def(py::init([](const Object& object, const py::sequence& arm_list, py::object gravity) {
-                 std::vector<ArmX> arms;
-                 for (const py::handle arm : arm_list) {
-                     arms.push_back(arm.cast<ArmX>());
-                 }
-                 const Vector3<double> g = gravity.is_none() ? standard_gravity<double>()
-                                                             : Vector3<double>(to_vector(gravity, "Model", "gravity", 3, "(3,)"));
-                 return ModelX(object, arms, g);
-             }),
-             py::arg("object"), py::arg("arms"), py::arg("gravity") = py::none())
-        .def_property_readonly("arms", &ModelX::arms, "N")
-        .def_property_readonly("object", &ModelX::object, py::return_value_policy::copy,
-                               "a copy: a model is constant once validated (set_end_effector changes an arm)")
-        .def_property_readonly("gravity", [](const ModelX& self) { return vector_copy(self.gravity(), true); })
-        .def("end_effector", [](const ModelX& self, Index arm) {
-            if (arm < 0 || arm >= self.arms()) {
-                fail_argument("Model.end_effector", "arm", "must be in [0, " + std::to_string(self.arms()) + ")");
-            }
-            return self.end_effector(arm);
-        }, py::arg("arm"))
-        .def("set_end_effector", &ModelX::set_end_effector, py::arg("arm"), py::arg("end_effector"),
-             "replaces arm's end-effector (gain scheduling), validated; raises InvalidModel")
-        .def_property_readonly("grasp_offsets_body",
-                               [](const ModelX& self) { return matrix_copy(self.grasp_offsets_body(), true); }, "(3, N)")
-        .def_property_readonly("end_effector_inertias",
-                               [](const ModelX& self) { return matrix_copy(self.end_effector_inertias(), true); },
-                               "the M_i side by side, (6, 6N)");
-
-    py::class_<DataX> data(module, "Data",
-                           "Buffers and results of interaction_dynamics for one Model (docs/dynamics.md). Array "
-                           "fields are read-only copies made when read.");
-    data.def(py::init<const ModelX&>(), py::arg("model"))
-        .def_property_readonly("arms", &DataX::arms)
-        .def_property_readonly(
-            "object_state", [](const DataX& self) { return self.object_state; }, "a copy of the state last used");
-    def_output(data, "object_rotation", &DataX::object_rotation, "R(q_o) (3, 3)");
-    def_output(data, "object_rotational_inertia", &DataX::object_rotational_inertia, "J_o in {w} (3, 3), (9)");
-    def_output(data, "grasp_offsets", &DataX::grasp_offsets, "r_i in {w} (3, N)");
-    def_output(data, "end_effector_positions", &DataX::end_effector_positions, "p_i (3, N)");
-    def_output(data, "end_effector_orientations", &DataX::end_effector_orientations, "q_i [x, y, z, w] (4, N)");
-    def_output(data, "end_effector_twists", &DataX::end_effector_twists, "xdot_i stacked (6N,)");
-    def_output(data, "motion_wrenches", &DataX::motion_wrenches, "h_i^x of (6) stacked (6N,)");
-    def_output(data, "h_sigma", &DataX::h_sigma, "[hSigma_o; hSigma_1; ...] (6(N+1),), (15)-(16)");
-    def_output(data, "accelerations", &DataX::accelerations, "[xdd_o; xdd_1; ...] (6(N+1),)");
-    def_output(data, "wrenches", &DataX::wrenches, "[h_o; h_1; ...] (6(N+1),), the wrench ON each body, (18)");
-    data.def("object_acceleration", [](const DataX& self) { return vector_copy(self.object_acceleration()); })
-        .def("object_wrench", [](const DataX& self) { return vector_copy(self.object_wrench()); },
-             "h_o = -G h' (23), (6,)");
-    data.def(
-        "wrench_on_object_at_centre",
-        [](const DataX& self, Index arm) {
-            if (arm < 0 || arm >= self.arms()) {
-                fail_argument("Data.wrench_on_object_at_centre", "arm", "out of range");
-            }
-            return vector_copy(self.wrench_on_object_at_centre(arm));
-        },
-        py::arg("arm"), "G_i (-h_i) (24): arm i's wrench on the object about its centre of mass (6,)");
-
     py::enum_<InputProblem> problem(module, "InputProblem", "What check_inputs found (docs/conventions.md, \"Errors\").");
     problem.value("none", InputProblem::none)
         .value("state_position", InputProblem::state_position)
@@ -203,9 +141,75 @@ void bind_model(py::module_& module)
         .def("__bool__", &InputCheck::ok)
         .def("input", &InputCheck::input, "the input's name");
 
+}
+
+template <typename Kind>
+void bind_model_kind(py::module_& module, const char* model_name, const char* data_name, const char* model_doc)
+{
+    using KindData = Data<Kind>;
+    using KindArm = Arm<typename Kind::EndEffectorModel>;
+    py::class_<Kind>(module, model_name, model_doc)
+        .def(py::init([model_name](const Object& object, const py::sequence& arm_list, py::object gravity) {
+                 std::vector<KindArm> arms;
+                 for (const py::handle arm : arm_list) {
+                     arms.push_back(arm.cast<KindArm>());
+                 }
+                 const Vector3<double> g = gravity.is_none() ? standard_gravity<double>()
+                                                             : Vector3<double>(to_vector(gravity, model_name, "gravity", 3, "(3,)"));
+                 return Kind(object, arms, g);
+             }),
+             py::arg("object"), py::arg("arms"), py::arg("gravity") = py::none())
+        .def_property_readonly("arms", &Kind::arms, "N")
+        .def_property_readonly("object", &Kind::object, py::return_value_policy::copy,
+                               "a copy: a model is constant once validated (set_end_effector changes an arm)")
+        .def_property_readonly("gravity", [](const Kind& self) { return vector_copy(self.gravity(), true); })
+        .def("end_effector", [](const Kind& self, Index arm) {
+            if (arm < 0 || arm >= self.arms()) {
+                fail_argument("end_effector", "arm", "must be in [0, " + std::to_string(self.arms()) + ")");
+            }
+            return self.end_effector(arm);
+        }, py::arg("arm"))
+        .def("set_end_effector", &Kind::set_end_effector, py::arg("arm"), py::arg("end_effector"),
+             "replaces arm's end-effector (gain scheduling), validated; raises InvalidModel")
+        .def_property_readonly("grasp_offsets_body",
+                               [](const Kind& self) { return matrix_copy(self.grasp_offsets_body(), true); }, "(3, N)")
+        .def_property_readonly("end_effector_inertias",
+                               [](const Kind& self) { return matrix_copy(self.end_effector_inertias(), true); },
+                               "the M_i side by side, (6, 6N)");
+
+    py::class_<KindData> data(module, data_name,
+                           "Buffers and results of interaction_dynamics for one Model (docs/dynamics.md). Array "
+                           "fields are read-only copies made when read.");
+    data.def(py::init<const Kind&>(), py::arg("model"))
+        .def_property_readonly("arms", &KindData::arms)
+        .def_property_readonly(
+            "object_state", [](const KindData& self) { return self.object_state; }, "a copy of the state last used");
+    def_output(data, "object_rotation", &KindData::object_rotation, "R(q_o) (3, 3)");
+    def_output(data, "object_rotational_inertia", &KindData::object_rotational_inertia, "J_o in {w} (3, 3), (9)");
+    def_output(data, "grasp_offsets", &KindData::grasp_offsets, "r_i in {w} (3, N)");
+    def_output(data, "end_effector_positions", &KindData::end_effector_positions, "p_i (3, N)");
+    def_output(data, "end_effector_orientations", &KindData::end_effector_orientations, "q_i [x, y, z, w] (4, N)");
+    def_output(data, "end_effector_twists", &KindData::end_effector_twists, "xdot_i stacked (6N,)");
+    def_output(data, "motion_wrenches", &KindData::motion_wrenches, "h_i^x of (6) stacked (6N,)");
+    def_output(data, "h_sigma", &KindData::h_sigma, "[hSigma_o; hSigma_1; ...] (6(N+1),), (15)-(16)");
+    def_output(data, "accelerations", &KindData::accelerations, "[xdd_o; xdd_1; ...] (6(N+1),)");
+    def_output(data, "wrenches", &KindData::wrenches, "[h_o; h_1; ...] (6(N+1),), the wrench ON each body, (18)");
+    data.def("object_acceleration", [](const KindData& self) { return vector_copy(self.object_acceleration()); })
+        .def("object_wrench", [](const KindData& self) { return vector_copy(self.object_wrench()); },
+             "h_o = -G h' (23), (6,)");
+    data.def(
+        "wrench_on_object_at_centre",
+        [](const KindData& self, Index arm) {
+            if (arm < 0 || arm >= self.arms()) {
+                fail_argument("Data.wrench_on_object_at_centre", "arm", "out of range");
+            }
+            return vector_copy(self.wrench_on_object_at_centre(arm));
+        },
+        py::arg("arm"), "G_i (-h_i) (24): arm i's wrench on the object about its centre of mass (6,)");
+
     module.def(
         "check_inputs",
-        [](const ModelX& model, const State& state, const SetpointsX& setpoints, const DisturbancesX& disturbances) {
+        [](const Kind& model, const State& state, const SetpointsX& setpoints, const DisturbancesX& disturbances) {
             require_arms(setpoints.arms(), model.arms(), "check_inputs", "setpoints");
             require_arms(disturbances.arms(), model.arms(), "check_inputs", "disturbances");
             return check_inputs(model, state, setpoints, disturbances);
@@ -215,7 +219,7 @@ void bind_model(py::module_& module)
         "quaternion of a tick's inputs (cheap; docs/conventions.md, \"Errors\").");
     module.def(
         "interaction_dynamics",
-        [](const ModelX& model, DataX& data_, const State& state, const SetpointsX& setpoints,
+        [](const Kind& model, KindData& data_, const State& state, const SetpointsX& setpoints,
            const DisturbancesX& disturbances) {
             require_arms(data_.arms(), model.arms(), "interaction_dynamics", "data");
             require_arms(setpoints.arms(), model.arms(), "interaction_dynamics", "setpoints");
@@ -234,14 +238,49 @@ the motion wrenches (6), hSigma of (15)-(16) with gravity (errata E1), then the 
 wrenches (18) in their structured O(N) form. Fills `data` and returns a copy of data.wrenches =
 [h_o; h_1; ...; h_N]. Inputs are not checked (use check_inputs): a NaN gives NaN. Releases the GIL.)doc");
 
-    module.def("kinetic_energy", [](const ModelX& model, const DataX& data_) {
+    module.def("kinetic_energy", [](const Kind& model, const KindData& data_) {
         require_arms(data_.arms(), model.arms(), "kinetic_energy", "data");
         return kinetic_energy(model, data_);
     }, py::arg("model"), py::arg("data"), "kinetic energy of the object and the end-effectors at data's state (7)");
-    module.def("gravity_potential_energy", [](const ModelX& model, const DataX& data_) {
+    module.def("gravity_potential_energy", [](const Kind& model, const KindData& data_) {
         require_arms(data_.arms(), model.arms(), "gravity_potential_energy", "data");
         return gravity_potential_energy(model, data_);
     }, py::arg("model"), py::arg("data"), "gravitational potential energy (7), errata E7");
+}
+
+void bind_resolved_acceleration(py::module_& module)
+{
+    using Resolved = ResolvedAccelerationEndEffector<double>;
+    using ResolvedArm = Arm<Resolved>;
+    py::class_<Resolved> end_effector(module, "ResolvedAccelerationEndEffector",
+                                      "An end-effector under resolved-acceleration control with PD tracking (20)-(21): "
+                                      "apparent_inertia Lambda_i (6, 6) SPD in {w}, derivative_gain K_D,i and "
+                                      "proportional_gain K_P,i (6, 6) (docs/model.md).");
+    end_effector.def(py::init<>())
+        .def(
+            "validate", [](const Resolved& self, Index arm) { self.validate(arm); }, py::arg("arm") = 0,
+            "raises InvalidModel naming the parameter and the arm");
+    def_array(end_effector, "ResolvedAccelerationEndEffector", "apparent_inertia", &Resolved::apparent_inertia, "(6, 6)",
+              "Lambda_i (6, 6), SPD");
+    def_array(end_effector, "ResolvedAccelerationEndEffector", "derivative_gain", &Resolved::derivative_gain, "(6, 6)",
+              "K_D,i (6, 6) [1/s]");
+    def_array(end_effector, "ResolvedAccelerationEndEffector", "proportional_gain", &Resolved::proportional_gain,
+              "(6, 6)", "K_P,i (6, 6) [1/s^2]");
+    py::class_<ResolvedArm>(module, "ResolvedAccelerationArm",
+                            "One arm of a ResolvedAccelerationModel: end_effector and grasp_body (as Arm).")
+        .def(py::init([](const Resolved& ee, const Pose<double>& grasp) { return ResolvedArm{ee, grasp}; }),
+             py::arg("end_effector") = Resolved(), py::arg("grasp_body") = Pose<double>())
+        .def_readwrite("end_effector", &ResolvedArm::end_effector)
+        .def_readwrite("grasp_body", &ResolvedArm::grasp_body);
+    bind_model_kind<Model<double, Dynamic, ResolvedAccelerationEndEffector>>(
+        module, "ResolvedAccelerationModel", "ResolvedAccelerationData",
+        "The cooperative system with resolved-acceleration end-effectors (20)-(21) (C++ Model<double, Dynamic, "
+        "ResolvedAccelerationEndEffector>): a RigidObject, N >= 1 ResolvedAccelerationArms, gravity (3,). The "
+        "interaction solver takes its general (dense inertia) path.");
+}
+
+void bind_impedance_energy(py::module_& module)
+{
     module.def("spring_potential_energy", [](const ModelX& model, const DataX& data_, const SetpointsX& setpoints) {
         require_arms(data_.arms(), model.arms(), "spring_potential_energy", "data");
         require_arms(setpoints.arms(), model.arms(), "spring_potential_energy", "setpoints");
@@ -310,7 +349,13 @@ void bind_simulator(py::module_& module)
 void bind_spatial_model(py::module_& module)
 {
     bind_parts(module);
-    bind_model(module);
+    bind_input_check(module);
+    bind_model_kind<ModelX>(module, "Model", "Data",
+                            "The cooperative system's constant part (docs/model.md): a RigidObject, N >= 1 Arms of "
+                            "ImpedanceEndEffector, gravity (3,). Validated at construction: raises InvalidModel naming "
+                            "the parameter and the arm.");
+    bind_impedance_energy(module);
+    bind_resolved_acceleration(module);
     bind_simulator(module);
 }
 

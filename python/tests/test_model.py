@@ -201,3 +201,54 @@ def test_simulator_run_logs_a_free_body():
     # wrench on arm i is h_i = m_i a = 10 kg x 0.4598 m/s^2 along x.
     np.testing.assert_allclose(log["wrenches"][:, 6], 10.0 * 10.0 / 21.75, rtol=1e-12)
     assert simulator.steps == 250 and simulator.time == pytest.approx(0.25)
+
+
+def test_resolved_acceleration_model_against_eq_18_in_numpy(rng):
+    """(20)-(21): end-effectors with general SPD apparent inertias Lambda_i (the solver's dense
+    path); the wrenches against (18) in numpy with A, b of (13)-(14) by hand, and h_i^Pi of (20)
+    at identity orientations (no rotation error) by hand."""
+    from conftest import random_spd
+    arms = []
+    lambdas, kd, kp = [], [], []
+    for y in (-0.4, 0.4):
+        ee = coopdyn.ResolvedAccelerationEndEffector()
+        lambdas.append(random_spd(rng, 6))
+        kd.append(np.diag(rng.uniform(5, 10, 6)))
+        kp.append(np.diag(rng.uniform(20, 50, 6)))
+        ee.apparent_inertia, ee.derivative_gain, ee.proportional_gain = lambdas[-1], kd[-1], kp[-1]
+        arms.append(coopdyn.ResolvedAccelerationArm(ee, coopdyn.Pose([0, y, 0])))
+    model = coopdyn.ResolvedAccelerationModel(coopdyn.RigidObject(1.75, np.diag([0.055, 0.01, 0.06])), arms)
+    data = coopdyn.ResolvedAccelerationData(model)
+    setpoints = coopdyn.Setpoints(2)
+    setpoints.positions = rng.standard_normal((3, 2)) * 0.01 + model.grasp_offsets_body
+    setpoints.twists = rng.standard_normal(12)
+    setpoints.accelerations = rng.standard_normal(12)
+    disturbances = coopdyn.Disturbances(2)
+    state = coopdyn.RigidBodyState()
+    state.twist = rng.standard_normal(6)
+    h = coopdyn.interaction_dynamics(model, data, state, setpoints, disturbances)
+    # (20) at identity orientations: h_i^Pi = Lambda_i (xdd_d - K_D (xdot_i - xdot_d) - K_P [p_i - p_d; 0]).
+    for i in range(2):
+        twist_i = data.end_effector_twists[6 * i:6 * i + 6]
+        error = np.r_[data.end_effector_positions[:, i] - setpoints.positions[:, i], 0, 0, 0]
+        expected = lambdas[i] @ (setpoints.accelerations[6 * i:6 * i + 6]
+                                 - kd[i] @ (twist_i - setpoints.twists[6 * i:6 * i + 6]) - kp[i] @ error)
+        np.testing.assert_allclose(data.motion_wrenches[6 * i:6 * i + 6], expected, rtol=1e-12, atol=1e-12)
+    r = data.grasp_offsets
+    omega = state.twist[3:]
+    A = np.zeros((12, 18))
+    b = np.zeros(12)
+    for i in range(2):
+        A[6 * i:6 * i + 3, 0:3] = -np.eye(3)
+        A[6 * i:6 * i + 3, 3:6] = skew(r[:, i])
+        A[6 * i + 3:6 * i + 6, 3:6] = -np.eye(3)
+        A[6 * i:6 * i + 6, 6 * (i + 1):6 * (i + 2)] = np.eye(6)
+        b[6 * i:6 * i + 3] = np.cross(omega, np.cross(omega, r[:, i]))
+    M = block_diag(block_diag(1.75 * np.eye(3), np.diag([0.055, 0.01, 0.06])), *lambdas)
+    L = np.linalg.cholesky(M)
+    reference = L @ np.linalg.pinv(A @ np.linalg.inv(L).T) @ (b - A @ np.linalg.solve(M, data.h_sigma))
+    np.testing.assert_allclose(h, reference, rtol=1e-9, atol=1e-9 * np.abs(reference).max())
+    bad = coopdyn.ResolvedAccelerationEndEffector()
+    with pytest.raises(coopdyn.InvalidModel) as error:
+        coopdyn.ResolvedAccelerationModel(coopdyn.RigidObject(1.0, np.eye(3)), [coopdyn.ResolvedAccelerationArm(bad)])
+    assert (error.value.parameter, error.value.arm) == ("apparent_inertia", 0)
