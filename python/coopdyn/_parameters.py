@@ -21,6 +21,8 @@ FIELDS = {
     _c.ImpedanceEndEffector: ("mass", "rotational_inertia", "translational_damping", "rotational_damping",
                               "translational_stiffness", "rotational_stiffness"),
     _c.Arm: ("end_effector", "grasp_body"),
+    _c.ResolvedAccelerationEndEffector: ("apparent_inertia", "derivative_gain", "proportional_gain"),
+    _c.ResolvedAccelerationArm: ("end_effector", "grasp_body"),
     _c.ControllerParameters: ("joints", "contacts", "stiffness", "damping", "posture_stiffness",
                               "posture_damping", "objective", "qp"),
 }

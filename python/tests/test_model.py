@@ -161,7 +161,10 @@ def test_model_parameters_print_compare_and_pickle():
     import pickle
     arm = coopdyn.Arm(coopdyn.ImpedanceEndEffector(mass=10.0, rotational_inertia=0.5 * np.eye(3)),
                       coopdyn.Pose([0, 0.4, 0]))
-    for obj in (arm, arm.end_effector, coopdyn.RigidObject(1.75, np.diag([0.055, 0.0, 0.055]))):
+    resolved = coopdyn.ResolvedAccelerationEndEffector()
+    resolved.apparent_inertia = np.diag([1.0, 2, 3, 4, 5, 6])
+    for obj in (arm, arm.end_effector, coopdyn.RigidObject(1.75, np.diag([0.055, 0.0, 0.055])), resolved,
+                coopdyn.ResolvedAccelerationArm(resolved, coopdyn.Pose([1, 2, 3]))):
         again = pickle.loads(pickle.dumps(obj))
         assert again == obj and repr(again) == repr(obj)
     assert repr(arm).startswith("Arm(end_effector=ImpedanceEndEffector(mass=10.0")
