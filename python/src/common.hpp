@@ -115,6 +115,7 @@ void bind_numerics(py::module_& module);
 void bind_controller(py::module_& module);
 void bind_kernels(py::module_& module);
 void bind_spatial_model(py::module_& module);
+void bind_analysis(py::module_& module);
 
 }  // namespace coopdyn::python
 

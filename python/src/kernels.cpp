@@ -193,17 +193,24 @@ void bind_kernels(py::module_& module)
         "(53) (errata E5; docs/analysis.md), block i acting ON end-effector i. ee_inertias (6, 6N), r (3, N), "
         "omega_o (3,), h_motion (6N,): the motion wrenches h_i^x of (6) stacked.");
 
-    py::class_<ApparentImpedance<double>>(module, "ApparentImpedance",
-                                          "Apparent object impedance of Theorem 2 (docs/analysis.md), 6 x 6 each, "
-                                          "in {w} about the object's centre of mass; fields are read-only copies.")
-        .def_property_readonly("inertia",
-                               [](const ApparentImpedance<double>& self) { return matrix_copy(self.inertia, true); },
+    using Impedance = ApparentImpedance<double>;
+    py::class_<Impedance>(module, "ApparentImpedance",
+                          "Apparent object impedance of Theorem 2 (docs/analysis.md), 6 x 6 each, in {w} about the "
+                          "object's centre of mass; fields are read-only copies.")
+        .def(py::init([](ArrayLike inertia, ArrayLike damping, ArrayLike stiffness) {
+                 Impedance result;
+                 result.inertia = symmetric_stack(inertia, "ApparentImpedance", "inertia", 1, false);
+                 result.damping = symmetric_stack(damping, "ApparentImpedance", "damping", 1, true);
+                 result.stiffness = symmetric_stack(stiffness, "ApparentImpedance", "stiffness", 1, true);
+                 return result;
+             }),
+             py::arg("inertia"), py::arg("damping"), py::arg("stiffness"),
+             "M (6, 6) symmetric positive definite, D and K (6, 6) symmetric")
+        .def_property_readonly("inertia", [](const Impedance& self) { return matrix_copy(self.inertia, true); },
                                "M (31)")
-        .def_property_readonly("damping",
-                               [](const ApparentImpedance<double>& self) { return matrix_copy(self.damping, true); },
+        .def_property_readonly("damping", [](const Impedance& self) { return matrix_copy(self.damping, true); },
                                "D (32)")
-        .def_property_readonly("stiffness",
-                               [](const ApparentImpedance<double>& self) { return matrix_copy(self.stiffness, true); },
+        .def_property_readonly("stiffness", [](const Impedance& self) { return matrix_copy(self.stiffness, true); },
                                "K, the exact linearisation (errata E3)");
     module.def(
         "apparent_impedance",

@@ -188,4 +188,5 @@ PYBIND11_MODULE(_coopdyn, module)
     coopdyn::python::bind_controller(module);
     coopdyn::python::bind_kernels(module);
     coopdyn::python::bind_spatial_model(module);
+    coopdyn::python::bind_analysis(module);  // after kernels: ApparentImpedance is bound there
 }

@@ -206,3 +206,50 @@ def test_load_distribution_and_squeeze_by_the_block_formula(rng):
     with pytest.raises(ValueError) as error:
         coopdyn.load_distribution(r, m, np.hstack(J), np.zeros(5))
     assert error.value.parameter == "object_wrench"
+
+
+def test_stability_of_the_apparent_impedance(rng):
+    """(52), Theorems 3-4, Corollary 1 (docs/analysis.md): the state matrix by hand, its eigenvalues
+    by numpy, the modes by a Cholesky-reduced symmetric eigenproblem in numpy, the commutator by
+    hand, and the centre of stiffness sum k_i r_i / sum k_i of the cooperative K."""
+    n = 3
+    r = rng.standard_normal((3, n))
+    k = rng.uniform(100, 300, n)
+    kappa = rng.uniform(10, 30, n)
+    Mi = [random_spd(rng, 6) for _ in range(n)]
+    Di = [np.diag(np.r_[[d] * 3, [e] * 3]) for d, e in rng.uniform(5, 20, (n, 2))]
+    Ki = [np.diag(np.r_[[k[i]] * 3, [kappa[i]] * 3]) for i in range(n)]
+    impedance = coopdyn.apparent_impedance(random_spd(rng, 6), np.hstack(Mi), np.hstack(Di), np.hstack(Ki), r)
+    M, D, K = impedance.inertia, impedance.damping, impedance.stiffness
+    A = np.block([[np.zeros((6, 6)), np.eye(6)], [-np.linalg.solve(M, K), -np.linalg.solve(M, D)]])
+    np.testing.assert_allclose(coopdyn.state_matrix(impedance), A, rtol=1e-10, atol=1e-10)
+    eigenvalues = coopdyn.linearised_eigenvalues(impedance)
+    assert eigenvalues.dtype == np.complex128 and eigenvalues.shape == (12,)
+    reference = np.linalg.eigvals(A)
+    np.testing.assert_allclose(np.sort_complex(eigenvalues), np.sort_complex(reference), rtol=1e-8, atol=1e-8)
+    assert np.all(eigenvalues.real < 0)  # Theorem 3
+    L = np.linalg.cholesky(M)
+    Linv = np.linalg.inv(L)
+    omega2, W = np.linalg.eigh(Linv @ K @ Linv.T)
+    modes = coopdyn.modes(impedance)
+    np.testing.assert_allclose(modes.natural_frequencies, np.sqrt(omega2), rtol=1e-9)
+    V = Linv.T @ W  # M-normalised
+    zeta = np.array([V[:, j] @ D @ V[:, j] / (2 * np.sqrt(omega2[j])) for j in range(6)])
+    np.testing.assert_allclose(modes.damping_ratios, zeta, rtol=1e-8)
+    np.testing.assert_allclose(modes.shapes.T @ M @ modes.shapes, np.eye(6), atol=1e-9)
+    commutator = D @ np.linalg.solve(M, K) - K @ np.linalg.solve(M, D)
+    assert coopdyn.classical_damping_commutator(impedance) == pytest.approx(np.linalg.norm(commutator), rel=1e-9)
+    np.testing.assert_allclose(coopdyn.centre_of_stiffness(K), r @ k / k.sum(), rtol=1e-10, atol=1e-12)
+    assert not coopdyn.is_decoupled(impedance)
+    # Corollary 1: a symmetric two-arm grasp about the centre with block-diagonal inertias decouples.
+    sym = np.array([[0.0, 0.0], [-0.4, 0.4], [0.0, 0.0]])
+    block = np.diag([10.0, 10, 10, 0.5, 0.5, 0.5])
+    Kb = np.diag([300.0] * 3 + [50.0] * 3)
+    decoupled = coopdyn.apparent_impedance(np.diag([1.75] * 3 + [0.055, 0.01, 0.055]), np.hstack([block] * 2),
+                                           np.hstack([np.diag([180.0] * 3 + [10.0] * 3)] * 2), np.hstack([Kb] * 2), sym)
+    assert coopdyn.is_decoupled(decoupled)
+    made = coopdyn.ApparentImpedance(M, D, K)
+    np.testing.assert_array_equal(made.inertia, M)
+    with pytest.raises(coopdyn.InvalidArgument) as error:
+        coopdyn.ApparentImpedance(np.zeros((6, 6)), D, K)
+    assert error.value.parameter == "inertia"
