@@ -1,5 +1,5 @@
 """Simulator.run: steps a Simulator and returns its log as a dict of numpy arrays (docs/python.md,
-"Simulating")."""
+"A first example")."""
 
 import numpy as np
 

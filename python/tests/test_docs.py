@@ -19,8 +19,12 @@ def test_docs_python_examples_run():
     # The first example: status ok, 19.62 N per palm (m g / (2 mu)).
     assert namespace["data"].status == coopdyn.ControlStatus.ok
     np.testing.assert_allclose(namespace["data"].contact_frame_wrenches[2], 19.62, rtol=1e-6)
-    for block in blocks[1:]:
-        exec(compile(block, str(DOC), "exec"), namespace)
+    import contextlib
+    import io
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        for block in blocks[1:]:
+            exec(compile(block, str(DOC), "exec"), namespace)
     assert namespace["hold_box"](0.5) == pytest.approx(19.62, rel=1e-6)
     assert namespace["hold_box"](0.3) == pytest.approx(9.81 / 0.3, rel=1e-6)
     # The quick start: 10 N / 21.75 kg.
@@ -31,6 +35,8 @@ def test_docs_python_examples_run():
     np.testing.assert_allclose(data.object_acceleration()[0], 10.0 / 21.75, rtol=1e-12)
     assert namespace["simulator"].time == pytest.approx(1.5)  # 1000 steps, then run(500)
     assert namespace["log"]["wrenches"].shape == (500, 18)
+    # The exceptions example raised and printed the fields as its comment says.
+    assert "contact friction_coefficient 1 must be positive and finite, got -1" in printed.getvalue()
 
 
 def test_docs_contact_frames_match_the_readme_matrices():
