@@ -116,6 +116,7 @@ void bind_controller(py::module_& module);
 void bind_kernels(py::module_& module);
 void bind_spatial_model(py::module_& module);
 void bind_analysis(py::module_& module);
+void bind_identification(py::module_& module);
 
 }  // namespace coopdyn::python
 

@@ -189,4 +189,5 @@ PYBIND11_MODULE(_coopdyn, module)
     coopdyn::python::bind_kernels(module);
     coopdyn::python::bind_spatial_model(module);
     coopdyn::python::bind_analysis(module);  // after kernels: ApparentImpedance is bound there
+    coopdyn::python::bind_identification(module);
 }
