@@ -253,3 +253,35 @@ def test_stability_of_the_apparent_impedance(rng):
     with pytest.raises(coopdyn.InvalidArgument) as error:
         coopdyn.ApparentImpedance(np.zeros((6, 6)), D, K)
     assert error.value.parameter == "inertia"
+
+
+def test_impedance_synthesis(rng):
+    """synthesize_gains recovers gains that produce a reachable target (the K of known gains, (E3)
+    in numpy as sum G_i diag(k_i I, kappa_i I) G_i^T); classical_damping gives every mode the
+    requested ratio (numpy's generalized eigenproblem) and commutes (Theorem 4)."""
+    n = 3
+    r = rng.standard_normal((3, n))
+    k = rng.uniform(100, 300, n)
+    kappa = rng.uniform(10, 30, n)
+    target = sum(grasp_block(r[:, i]) @ np.diag(np.r_[[k[i]] * 3, [kappa[i]] * 3]) @ grasp_block(r[:, i]).T
+                 for i in range(n))
+    result = coopdyn.synthesize_gains(r, target)
+    assert result.achievable and result.relative_residual < 1e-9
+    np.testing.assert_allclose(result.achieved, target, rtol=1e-9, atol=1e-9 * np.abs(target).max())
+    assert np.all(result.translational >= 0) and np.all(result.rotational >= 0)
+    assert result.total_rotational == pytest.approx(kappa.sum(), rel=1e-9)
+    unreachable = np.eye(6)
+    unreachable[0, 3] = unreachable[3, 0] = 0.9
+    assert not coopdyn.synthesize_gains(r, unreachable).achievable
+
+    M = random_spd(rng, 6)
+    impedance = coopdyn.ApparentImpedance(M, np.zeros((6, 6)), target)
+    D = coopdyn.classical_damping(impedance, 0.7)
+    L = np.linalg.cholesky(M)
+    Linv = np.linalg.inv(L)
+    omega2, W = np.linalg.eigh(Linv @ target @ Linv.T)
+    V = Linv.T @ W
+    zeta = np.array([V[:, j] @ D @ V[:, j] / (2 * np.sqrt(omega2[j])) for j in range(6)])
+    np.testing.assert_allclose(zeta, 0.7, rtol=1e-8)
+    commutator = D @ np.linalg.solve(M, target) - target @ np.linalg.solve(M, D)
+    assert np.linalg.norm(commutator) < 1e-9 * np.linalg.norm(D) * np.linalg.norm(target) / np.linalg.norm(M)
