@@ -1,11 +1,9 @@
 // The first paper's stability analysis of the linearised object dynamics (52) (Theorems 3-4,
-// Corollary 1, errata E4; docs/analysis.md) on an ApparentImpedance, and the impedance synthesis
-// (per-arm gains for a target object stiffness or damping, classical damping). Its own translation unit:
+// Corollary 1, errata E4; docs/analysis.md) on an ApparentImpedance. Its own translation unit:
 // Eigen's eigen-solvers (12 x 12 general, 6 x 6 generalized symmetric) are the most expensive
 // templates of the module to compile.
 #include "common.hpp"
 
-#include <coopdyn/analysis/impedance_synthesis.hpp>
 #include <coopdyn/analysis/stability.hpp>
 
 #include <cmath>
@@ -13,11 +11,8 @@
 
 namespace coopdyn::python {
 
-void bind_synthesis(py::module_& module);
-
 void bind_analysis(py::module_& module)
 {
-    bind_synthesis(module);
     using Impedance = ApparentImpedance<double>;
     module.def(
         "state_matrix", [](const Impedance& impedance) { return matrix_copy(state_matrix(impedance)); },
@@ -71,43 +66,6 @@ void bind_analysis(py::module_& module)
         py::arg("stiffness"),
         "centre_of_stiffness(stiffness) -> (3,): the point (from the object's centre of mass, {w}) about which a force "
         "is resisted by a pure translation; sum k_i r_i / sum k_i for the cooperative K (docs/analysis.md).");
-}
-
-void bind_synthesis(py::module_& module)
-{
-    using Result = SynthesisResult<double>;
-    py::class_<Result>(module, "SynthesisResult",
-                       "Per-arm gains whose apparent object matrix (E3) is closest to a target (docs/analysis.md, "
-                       "\"Impedance synthesis\"); read-only copies.")
-        .def_readonly("achievable", &Result::achievable)
-        .def_property_readonly("translational", [](const Result& self) { return vector_copy(self.translational, true); },
-                               "k_i (or d_i) per arm (N,), >= 0")
-        .def_property_readonly("rotational", [](const Result& self) { return vector_copy(self.rotational, true); },
-                               "kappa_i (or delta_i) per arm (N,): total_rotational split equally")
-        .def_readonly("total_rotational", &Result::total_rotational)
-        .def_property_readonly("achieved", [](const Result& self) { return matrix_copy(self.achieved, true); },
-                               "the object matrix these gains give (6, 6)")
-        .def_readonly("relative_residual", &Result::relative_residual)
-        .def_readonly("tolerance", &Result::tolerance);
-    module.def(
-        "synthesize_gains",
-        [](ArrayLike r_in, ArrayLike target_in, double tolerance) {
-            const Matrix r = to_matrix(r_in, "synthesize_gains", "r", 3, any_size, "(3, N)");
-            const Matrix6<double> target = to_matrix(target_in, "synthesize_gains", "target", 6, 6, "(6, 6)");
-            return synthesize_gains(r, target, tolerance);
-        },
-        py::arg("r"), py::arg("target"), py::arg("tolerance") = 1e-9,
-        "synthesize_gains(r, target, tolerance=1e-9) -> SynthesisResult: non-negative translational gains per arm "
-        "and a total rotational gain whose apparent object stiffness (or damping) sum_i k_i T(r_i) + sum kappa R (E3) "
-        "is closest to target (6, 6) (non-negative least squares; docs/analysis.md). r (3, N).");
-    module.def(
-        "classical_damping",
-        [](const ApparentImpedance<double>& impedance, double damping_ratio) {
-            return matrix_copy(classical_damping(impedance, damping_ratio));
-        },
-        py::arg("impedance"), py::arg("damping_ratio"),
-        "classical_damping(impedance, damping_ratio) -> (6, 6): D = 2 zeta M^1/2 (M^-1/2 K M^-1/2)^1/2 M^1/2, the "
-        "damping that gives every mode of (52) the ratio zeta and commutes classically (Theorem 4; docs/analysis.md).");
 }
 
 }  // namespace coopdyn::python

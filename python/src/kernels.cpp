@@ -1,10 +1,12 @@
 // The first paper's formula kernels (Erhart & Hirche 2016; docs/model.md, docs/dynamics.md,
 // docs/coordination.md, docs/analysis.md) on numpy arrays: the grasp matrix (24), the constraint
 // matrix and bias (13)-(14), the weighted grasp inverse (25), Udwadia-Kalaba (18), the structured
-// interaction wrenches (18), the internal wrenches (53) and the apparent impedance (31)-(32).
+// interaction wrenches (18), the internal wrenches (53), the apparent impedance (31)-(32) and the
+// impedance synthesis (per-arm gains for a target object stiffness or damping, classical damping).
 #include "common.hpp"
 
 #include <coopdyn/analysis/apparent_impedance.hpp>
+#include <coopdyn/analysis/impedance_synthesis.hpp>
 #include <coopdyn/analysis/internal_wrenches.hpp>
 #include <coopdyn/coordination/grasp_squeeze.hpp>
 #include <coopdyn/coordination/load_distribution.hpp>
@@ -87,6 +89,43 @@ py::array udwadia_kalaba_checked(ArrayLike m_in, ArrayLike a_in, ArrayLike b_in,
 }
 
 }  // namespace
+
+void bind_synthesis(py::module_& module)
+{
+    using Result = SynthesisResult<double>;
+    py::class_<Result>(module, "SynthesisResult",
+                       "Per-arm gains whose apparent object matrix (E3) is closest to a target (docs/analysis.md, "
+                       "\"Impedance synthesis\"); read-only copies.")
+        .def_readonly("achievable", &Result::achievable)
+        .def_property_readonly("translational", [](const Result& self) { return vector_copy(self.translational, true); },
+                               "k_i (or d_i) per arm (N,), >= 0")
+        .def_property_readonly("rotational", [](const Result& self) { return vector_copy(self.rotational, true); },
+                               "kappa_i (or delta_i) per arm (N,): total_rotational split equally")
+        .def_readonly("total_rotational", &Result::total_rotational)
+        .def_property_readonly("achieved", [](const Result& self) { return matrix_copy(self.achieved, true); },
+                               "the object matrix these gains give (6, 6)")
+        .def_readonly("relative_residual", &Result::relative_residual)
+        .def_readonly("tolerance", &Result::tolerance);
+    module.def(
+        "synthesize_gains",
+        [](ArrayLike r_in, ArrayLike target_in, double tolerance) {
+            const Matrix r = to_matrix(r_in, "synthesize_gains", "r", 3, any_size, "(3, N)");
+            const Matrix6<double> target = to_matrix(target_in, "synthesize_gains", "target", 6, 6, "(6, 6)");
+            return synthesize_gains(r, target, tolerance);
+        },
+        py::arg("r"), py::arg("target"), py::arg("tolerance") = 1e-9,
+        "synthesize_gains(r, target, tolerance=1e-9) -> SynthesisResult: non-negative translational gains per arm "
+        "and a total rotational gain whose apparent object stiffness (or damping) sum_i k_i T(r_i) + sum kappa R (E3) "
+        "is closest to target (6, 6) (non-negative least squares; docs/analysis.md). r (3, N).");
+    module.def(
+        "classical_damping",
+        [](const ApparentImpedance<double>& impedance, double damping_ratio) {
+            return matrix_copy(classical_damping(impedance, damping_ratio));
+        },
+        py::arg("impedance"), py::arg("damping_ratio"),
+        "classical_damping(impedance, damping_ratio) -> (6, 6): D = 2 zeta M^1/2 (M^-1/2 K M^-1/2)^1/2 M^1/2, the "
+        "damping that gives every mode of (52) the ratio zeta and commutes classically (Theorem 4; docs/analysis.md).");
+}
 
 void bind_kernels(py::module_& module)
 {
@@ -228,6 +267,7 @@ void bind_kernels(py::module_& module)
         "apparent_impedance(object_inertia, ee_inertia, ee_damping, ee_stiffness, r) -> ApparentImpedance: M = M_o + "
         "sum G_i M_i G_i^T (31), D = sum G_i D_i G_i^T (32) and the exact K (E3) of Theorem 2 (docs/analysis.md). "
         "object_inertia (6, 6); ee_inertia, ee_damping, ee_stiffness (6, 6N), symmetric blocks; r (3, N).");
+    bind_synthesis(module);  // after ApparentImpedance
 }
 
 }  // namespace coopdyn::python
