@@ -1,0 +1,455 @@
+// The second paper's controller (Lin et al.; docs/control.md): its parameters, ControllerModel,
+// ControllerData, ControllerInput and controller_tick, the projected dynamics, the grasp Jacobians,
+// the internal-wrench basis and the friction margin. Sizes K (contacts), Q (joints) and the
+// pyramids' edges are chosen at run time (Eigen::Dynamic). The spatial types Pose and
+// RigidBodyState are bound here too (the controller's inputs are the first to need them).
+#include "common.hpp"
+
+#include <coopdyn/control.hpp>
+
+#include <sstream>
+#include <type_traits>
+#include <vector>
+
+namespace coopdyn::python {
+
+namespace {
+
+constexpr int X = Eigen::Dynamic;
+using Friction = ContactFriction<double>;
+using Contact = ContactPoint<double>;
+using Parameters = ControllerParameters<double>;
+using Objective = SqueezeObjective<double>;
+using QpOptions = ContactQpOptions<double>;
+using ModelX = ControllerModel<double, X, X, X>;
+using DataX = ControllerData<double, X, X, X>;
+using InputX = ControllerInput<double, X, X>;
+using Projection = ProjectedDynamics<double, X, X>;
+using PoseX = Pose<double>;
+using State = RigidBodyState<double>;
+
+void bind_spatial(py::module_& module)
+{
+    py::class_<PoseX> pose(module, "Pose",
+                           "A pose: position (3,) and orientation, a unit quaternion given as [x, y, z, w] (Eigen's "
+                           "coeffs() order, scipy's from_quat order; docs/conventions.md, \"Quaternions\").");
+    pose.def(py::init([](py::object position, py::object orientation) {
+                 PoseX result;
+                 if (!position.is_none()) {
+                     result.position = to_vector(position, "Pose", "position", 3, "(3,)");
+                 }
+                 if (!orientation.is_none()) {
+                     result.orientation = quaternion_from(orientation, "Pose", "orientation");
+                 }
+                 return result;
+             }),
+             py::arg("position") = py::none(), py::arg("orientation") = py::none(),
+             "Pose(position=[0, 0, 0], orientation=[0, 0, 0, 1])");
+    def_array(pose, "Pose", "position", &PoseX::position, "(3,)", "position (3,)");
+    pose.def_property(
+        "orientation", [](const PoseX& self) { return quaternion_array(self.orientation, true); },
+        [](PoseX& self, ArrayLike value) { self.orientation = quaternion_from(value, "Pose", "orientation"); },
+        "unit quaternion [x, y, z, w] (not normalised here: the models refuse a non-unit one)");
+    pose.def("rotation", [](const PoseX& self) { return matrix_copy(self.orientation.toRotationMatrix()); },
+             "the rotation matrix (3, 3) of the orientation");
+
+    py::class_<State> state(module, "RigidBodyState", "Pose and twist [v; w] (6,) of a body's centre, in {w}.");
+    state.def(py::init<>())
+        .def_readwrite("pose", &State::pose, "Pose (a reference into this state: writes go through)");
+    def_array(state, "RigidBodyState", "twist", &State::twist, "(6,)", "twist [v; w] (6,), {w}");
+}
+
+void bind_parameters(py::module_& module)
+{
+    py::class_<Friction>(module, "ContactFriction",
+                         "Friction parameters of one flat contact, Lin et al. L(17)-(19) with errata E9 "
+                         "(docs/control.md): |f_t| <= mu f_z in an n-edge pyramid, |t_z| <= gamma f_z, the centre "
+                         "of pressure in the patch, f_z >= f_min.")
+        .def(py::init<>())
+        .def_readwrite("friction_coefficient", &Friction::friction_coefficient, "mu > 0 (Coulomb)")
+        .def_readwrite("torsional_coefficient", &Friction::torsional_coefficient, "gamma >= 0 [m]")
+        .def_readwrite("patch_half_length_x", &Friction::patch_half_length_x, "delta_x > 0 [m]")
+        .def_readwrite("patch_half_length_y", &Friction::patch_half_length_y, "delta_y > 0 [m]")
+        .def_readwrite("minimum_normal_force", &Friction::minimum_normal_force, "f_min >= 0 [N]")
+        .def_readwrite("pyramid_edges", &Friction::pyramid_edges, "n, 3..64")
+        .def(
+            "validate", [](const Friction& self, Index contact) { self.validate(contact); }, py::arg("contact") = 0,
+            "raises InvalidModel naming the parameter (and the contact as .arm)");
+
+    py::class_<Contact>(module, "ContactPoint",
+                        "One contact of a hand on the object: frame (Pose of the contact frame {c_i} in the object's "
+                        "body frame, z the inward normal) and friction (ContactFriction).")
+        .def(py::init<>())
+        .def_readwrite("frame", &Contact::frame, "Pose in the object's frame (a reference: writes go through)")
+        .def_readwrite("friction", &Contact::friction, "ContactFriction (a reference: writes go through)");
+
+    py::class_<Objective>(module, "SqueezeObjective",
+                          "What the contact QP minimises (docs/control.md, \"The least squeeze\"; errata E13): "
+                          "internal_weight |B^T w(z)|^2 + moment_weight sum |t_i|^2 + torque_weight |J^T B z|^2 "
+                          "(L(20)) + squeeze_weight |B z|^2.")
+        .def(py::init<>())
+        .def_readwrite("internal_weight", &Objective::internal_weight)
+        .def_readwrite("moment_weight", &Objective::moment_weight)
+        .def_readwrite("torque_weight", &Objective::torque_weight)
+        .def_readwrite("squeeze_weight", &Objective::squeeze_weight)
+        .def_static("least_squeeze", &Objective::least_squeeze, "the default: the least internal wrench (E13)")
+        .def_static("least_torque_centred", &Objective::least_torque_centred, "L(20) plus the centring moment term")
+        .def_static("paper", &Objective::paper, "the paper's L(20) alone, tau_c^T tau_c (with a 1e-6 ridge)");
+
+    py::class_<QpOptions>(module, "ContactQpOptions",
+                          "Options of the contact QP (docs/control.md, \"When friction cannot hold the load\").")
+        .def(py::init<>())
+        .def_readwrite("warm_start", &QpOptions::warm_start)
+        .def_readwrite("iteration_limit", &QpOptions::iteration_limit, "0: the solver's default")
+        .def_readwrite("fallback_weight", &QpOptions::fallback_weight, "> 0");
+
+    py::class_<Parameters> parameters(module, "ControllerParameters",
+                                      "Everything a ControllerModel is built from (plain data, validated by "
+                                      "ControllerModel; docs/control.md, \"The controller\").");
+    parameters.def(py::init<>())
+        .def_readwrite("joints", &Parameters::joints, "Q, all joints of all arms")
+        .def_property(
+            "contacts",
+            [](const Parameters& self) {
+                py::list contacts;
+                for (const Contact& contact : self.contacts) {
+                    contacts.append(contact);
+                }
+                return contacts;
+            },
+            [](Parameters& self, const py::sequence& contacts) {
+                std::vector<Contact> values;
+                for (const py::handle contact : contacts) {
+                    values.push_back(contact.cast<Contact>());
+                }
+                self.contacts = values;
+            },
+            "list of ContactPoint, K >= 2, in the order of J's row blocks (a copy: assign the whole list)")
+        .def_readwrite("objective", &Parameters::objective, "SqueezeObjective")
+        .def_readwrite("qp", &Parameters::qp, "ContactQpOptions");
+    def_array(parameters, "ControllerParameters", "stiffness", &Parameters::stiffness, "(6, 6)",
+              "K_d (6, 6), symmetric >= 0 [N/m, N m/rad], L(16)");
+    def_array(parameters, "ControllerParameters", "damping", &Parameters::damping, "(6, 6)",
+              "D_d (6, 6), symmetric >= 0, L(16)");
+    def_array(parameters, "ControllerParameters", "posture_stiffness", &Parameters::posture_stiffness, "(Q,)",
+              "K_n (Q,) >= 0, the posture gains (E12)", true);
+    def_array(parameters, "ControllerParameters", "posture_damping", &Parameters::posture_damping, "(Q,)",
+              "D_n (Q,) >= 0 (E12)", true);
+}
+
+void bind_projection(py::module_& module)
+{
+    py::enum_<ProjectionStatus>(module, "ProjectionStatus", "Outcome of the projected dynamics.")
+        .value("ok", ProjectionStatus::ok)
+        .value("singular_constraint", ProjectionStatus::singular_constraint, "J lost rank")
+        .value("singular_task", ProjectionStatus::singular_task, "the object cannot be moved in some direction");
+
+    py::class_<Projection> projection(module, "ProjectedDynamics",
+                                      "Projected inverse dynamics L(4), (13), (15), (26) at one configuration "
+                                      "(docs/control.md). Every field is a read-only copy.");
+    projection.def_readonly("status", &Projection::status);
+    def_output(projection, "contact_offsets", &Projection::contact_offsets, "r (3, K), {w}");
+    def_output(projection, "grasp", &Projection::grasp, "G (6, 6K), (24)");
+    def_output(projection, "object_jacobian", &Projection::object_jacobian, "Jx (6, Q)");
+    def_output(projection, "constraint_jacobian", &Projection::constraint_jacobian, "Jc (6K, Q), L(13)");
+    def_output(projection, "internal_basis", &Projection::internal_basis, "B (6K, 6K - 6), orthonormal, G B = 0");
+    def_output(projection, "reduced_jacobian_transpose", &Projection::reduced_jacobian_transpose, "J^T B (Q, 6K - 6)");
+    def_output(projection, "projector", &Projection::projector, "P (Q, Q), L(4)");
+    def_output(projection, "constrained_inertia", &Projection::constrained_inertia, "Mc (Q, Q), L(26)");
+    def_output(projection, "task_inertia", &Projection::task_inertia, "Lambda_c (6, 6), L(15)");
+    def_output(projection, "task_bias", &Projection::task_bias, "hc (6,), L(15)");
+    def_output(projection, "object_twist", &Projection::object_twist, "Jx qdot (6,)");
+    def_output(projection, "object_jacobian_rate_qdot", &Projection::object_jacobian_rate_qdot, "Jxdot qdot (6,)");
+    def_output(projection, "constraint_jacobian_rate_qdot", &Projection::constraint_jacobian_rate_qdot,
+               "Jcdot qdot (6K,)");
+    def_output(projection, "projector_rate_qdot", &Projection::projector_rate_qdot, "Pdot qdot (Q,)");
+
+    module.def(
+        "projected_dynamics",
+        [](ArrayLike m_in, ArrayLike h_in, ArrayLike j_in, ArrayLike jdot_in, ArrayLike qdot_in, ArrayLike r_in) {
+            constexpr const char* name = "projected_dynamics";
+            const Matrix r = to_matrix(r_in, name, "r", 3, any_size, "(3, K)");
+            const Index arms = r.cols();
+            if (arms < 2) {
+                fail_argument(name, "r", "must have K >= 2 columns, got " + std::to_string(arms));
+            }
+            const Matrix jacobian = to_matrix(j_in, name, "J", 6 * arms, any_size, ("(6K, Q) = (" + std::to_string(6 * arms) + ", Q)").c_str());
+            const Index joints = jacobian.cols();
+            if (joints < 6 * arms) {
+                fail_argument(name, "J", "must have Q >= 6K = " + std::to_string(6 * arms) + " columns, got " +
+                                             std::to_string(joints));
+            }
+            const Matrix inertia = to_matrix(m_in, name, "M", joints, joints, ("(Q, Q) = " + dims(joints, joints)).c_str());
+            const Vector bias = to_vector(h_in, name, "h", joints, ("(Q,) = " + dims(joints)).c_str());
+            const Vector rate = to_vector(jdot_in, name, "Jdot_qdot", 6 * arms, ("(6K,) = " + dims(6 * arms)).c_str());
+            const Vector velocities = to_vector(qdot_in, name, "qdot", joints, ("(Q,) = " + dims(joints)).c_str());
+            py::gil_scoped_release unlocked;
+            Projection result(arms, joints);
+            result.compute(inertia, bias, jacobian, rate, velocities, r);
+            return result;
+        },
+        py::arg("M"), py::arg("h"), py::arg("J"), py::arg("Jdot_qdot"), py::arg("qdot"), py::arg("r"),
+        R"doc(projected_dynamics(M, h, J, Jdot_qdot, qdot, r) -> ProjectedDynamics
+
+Projected inverse dynamics L(4), (13), (15), (26) of K arms holding an object (docs/control.md):
+M (Q, Q) joint inertia, SPD; h (Q,) bias; J (6K, Q) stacked contact Jacobians; Jdot_qdot (6K,);
+qdot (Q,) satisfying the grasp (Jc qdot = 0); r (3, K) contact points from the object's centre, {w}.
+K >= 2, Q >= 6K. Check .status. Releases the GIL.)doc");
+
+    module.def(
+        "object_jacobian",
+        [](ArrayLike r_in, ArrayLike j_in) {
+            const Matrix r = to_matrix(r_in, "object_jacobian", "r", 3, any_size, "(3, K)");
+            const Matrix jacobian = to_matrix(j_in, "object_jacobian", "J", 6 * r.cols(), any_size,
+                                              ("(6K, Q) = (" + std::to_string(6 * r.cols()) + ", Q)").c_str());
+            if (r.cols() < 1) {
+                fail_argument("object_jacobian", "r", "must have K >= 1 columns");
+            }
+            return matrix_copy(coopdyn::object_jacobian(r, jacobian));
+        },
+        py::arg("r"), py::arg("J"),
+        "object_jacobian(r, J) -> (6, Q): Jx = (G G^T)^-1 G J, the object's twist Jx qdot while the grasp holds "
+        "(docs/model.md, \"Grasp Jacobians\"). r (3, K), J (6K, Q).");
+    module.def(
+        "constraint_jacobian",
+        [](ArrayLike r_in, ArrayLike j_in) {
+            const Matrix r = to_matrix(r_in, "constraint_jacobian", "r", 3, any_size, "(3, K)");
+            const Matrix jacobian = to_matrix(j_in, "constraint_jacobian", "J", 6 * r.cols(), any_size,
+                                              ("(6K, Q) = (" + std::to_string(6 * r.cols()) + ", Q)").c_str());
+            if (r.cols() < 1) {
+                fail_argument("constraint_jacobian", "r", "must have K >= 1 columns");
+            }
+            return matrix_copy(coopdyn::constraint_jacobian(r, jacobian));
+        },
+        py::arg("r"), py::arg("J"),
+        "constraint_jacobian(r, J) -> (6K, Q): Jc = (I - G^+ G) J = J - G^T Jx, Lin et al. L(13), rank 6K - 6 "
+        "(errata E10). r (3, K), J (6K, Q).");
+    module.def(
+        "internal_wrench_basis",
+        [](ArrayLike r_in) {
+            const Matrix r = to_matrix(r_in, "internal_wrench_basis", "r", 3, any_size, "(3, K)");
+            if (r.cols() < 2) {
+                fail_argument("internal_wrench_basis", "r", "must have K >= 2 columns, got " + std::to_string(r.cols()));
+            }
+            return matrix_copy(coopdyn::internal_wrench_basis(r));
+        },
+        py::arg("r"),
+        "internal_wrench_basis(r) -> (6K, 6K - 6): an orthonormal basis B of the internal wrenches, the null space "
+        "of the grasp matrix G (24): G B = 0, B^T B = I (docs/control.md). r (3, K), K >= 2.");
+}
+
+Friction checked_friction(const Friction& friction)
+{
+    if (friction.pyramid_edges < 3 || friction.pyramid_edges > max_pyramid_edges) {
+        friction.validate(no_arm);  // raises InvalidModel naming pyramid_edges
+    }
+    return friction;
+}
+
+void bind_friction(py::module_& module)
+{
+    module.def(
+        "friction_margin",
+        [](const Friction& friction, ArrayLike wrench_in) {
+            const Vector wrench = to_vector(wrench_in, "friction_margin", "wrench", 6, "(6,)");
+            const Vector6<double> w = wrench;
+            return coopdyn::friction_margin(checked_friction(friction), w);
+        },
+        py::arg("friction"), py::arg("wrench"),
+        "friction_margin(friction, wrench) -> float: min_k (b_k - a_k^T w) / |a_k| over the contact's friction rows "
+        "L(17)-(19) (errata E9) for the wrench w = [f; t] (6,) in the contact frame: > 0 inside, < 0 violated "
+        "(N for force rows, N m for moment rows; docs/control.md).");
+    module.def(
+        "friction_margins",
+        [](const Friction& friction, ArrayLike wrench_in) {
+            const Vector wrench = to_vector(wrench_in, "friction_margins", "wrench", 6, "(6,)");
+            const Vector6<double> w = wrench;
+            const FrictionMargins<double> margins = coopdyn::friction_margins(checked_friction(friction), w);
+            return py::make_tuple(margins.force, margins.moment);
+        },
+        py::arg("friction"), py::arg("wrench"),
+        "friction_margins(friction, wrench) -> (force, moment): friction_margin split into the force rows' margin "
+        "(unilateral and pyramid, N) and the moment rows' (torsion and centre of pressure, N m).");
+    module.def(
+        "contact_frame_friction_rows",
+        [](const Friction& friction) {
+            const Friction checked = checked_friction(friction);
+            const Index count = friction_rows(checked.pyramid_edges);
+            Eigen::Matrix<double, Eigen::Dynamic, 6> rows = Eigen::Matrix<double, Eigen::Dynamic, 6>::Zero(count, 6);
+            Vector bounds = Vector::Zero(count);
+            contact_frame_friction_rows(checked, rows, bounds);
+            return py::make_tuple(matrix_copy(rows), vector_copy(bounds));
+        },
+        py::arg("friction"),
+        "contact_frame_friction_rows(friction) -> (A (n + 7, 6), b (n + 7,)): the rows A [f; t] <= b of L(17)-(19) "
+        "with errata E9, in the order unilateral, the n pyramid facets, torsion (+, -), t_x (+, -), t_y (+, -).");
+}
+
+void check_sizes(const ModelX& model, const DataX& data, const InputX& input)
+{
+    const Index arms = model.arms();
+    const Index joints = model.joints();
+    if (data.arms() != arms || data.joints() != joints) {
+        fail_argument("controller_tick", "data",
+                      "was made for another model (K = " + std::to_string(data.arms()) + ", Q = " +
+                          std::to_string(data.joints()) + "; the model has K = " + std::to_string(arms) +
+                          ", Q = " + std::to_string(joints) + ")");
+    }
+    if (input.jacobian.rows() != 6 * arms || input.inertia.rows() != joints) {
+        fail_argument("controller_tick", "input",
+                      "was made for another model (K = " + std::to_string(input.jacobian.rows() / 6) + ", Q = " +
+                          std::to_string(input.inertia.rows()) + ")");
+    }
+}
+
+void bind_controller_types(py::module_& module)
+{
+    py::enum_<ControlStatus>(module, "ControlStatus", "Outcome of a controller tick (docs/control.md).")
+        .value("ok", ControlStatus::ok)
+        .value("friction_infeasible", ControlStatus::friction_infeasible)
+        .value("qp_failed", ControlStatus::qp_failed)
+        .value("singular", ControlStatus::singular)
+        .value("invalid_input", ControlStatus::invalid_input);
+    py::enum_<ControllerInputProblem> problem(module, "ControllerInputProblem",
+                                              "The input a tick refused (ControllerData.input_problem).");
+    for (int k = 0; k <= static_cast<int>(ControllerInputProblem::inertia_not_positive_definite); ++k) {
+        const auto value = static_cast<ControllerInputProblem>(k);
+        // the enumerators' C++ names (to_string gives the input's name and the problem)
+        static const char* const names[] = {
+            "none", "inertia_not_finite", "bias_not_finite", "jacobian_not_finite", "jacobian_rate_qdot_not_finite",
+            "positions_not_finite", "velocities_not_finite", "object_position_not_finite", "object_orientation_not_unit",
+            "object_twist_not_finite", "object_acceleration_not_finite", "desired_position_not_finite",
+            "desired_orientation_not_unit", "desired_twist_not_finite", "desired_acceleration_not_finite",
+            "posture_not_finite", "inertia_not_positive_definite"};
+        problem.value(names[k], value, to_string(value));
+    }
+
+    py::class_<ModelX> model(module, "ControllerModel",
+                             "The controller's constant part (Lin et al.; docs/control.md), built from "
+                             "ControllerParameters, which it validates: raises InvalidModel naming the parameter "
+                             "and the contact (.arm). K, Q and the pyramids' edges are taken from the parameters.");
+    model.def(py::init<const Parameters&>(), py::arg("parameters"))
+        .def_property_readonly("arms", &ModelX::arms, "K")
+        .def_property_readonly("joints", &ModelX::joints, "Q")
+        .def_property_readonly("rows", &ModelX::rows, "rows of the contact QP, sum_i (n_i + 7)")
+        .def_property_readonly("contacts",
+                               [](const ModelX& self) {
+                                   py::list contacts;
+                                   for (const Contact& contact : self.contacts()) {
+                                       contacts.append(contact);
+                                   }
+                                   return contacts;
+                               })
+        .def_property_readonly("objective", &ModelX::objective, py::return_value_policy::copy,
+                               "a copy: a model is constant once validated")
+        .def_property_readonly("qp_options", &ModelX::qp_options, py::return_value_policy::copy, "a copy")
+        .def_property_readonly("stiffness", [](const ModelX& self) { return matrix_copy(self.stiffness(), true); })
+        .def_property_readonly("damping", [](const ModelX& self) { return matrix_copy(self.damping(), true); })
+        .def_property_readonly("posture_stiffness",
+                               [](const ModelX& self) { return vector_copy(self.posture_stiffness(), true); })
+        .def_property_readonly("posture_damping",
+                               [](const ModelX& self) { return vector_copy(self.posture_damping(), true); })
+        .def_property_readonly("contact_frame_rows",
+                               [](const ModelX& self) { return matrix_copy(self.contact_frame_rows(), true); })
+        .def_property_readonly("contact_frame_bounds",
+                               [](const ModelX& self) { return vector_copy(self.contact_frame_bounds(), true); })
+        .def_property_readonly("body_internal_basis",
+                               [](const ModelX& self) { return matrix_copy(self.body_internal_basis(), true); })
+        .def_property_readonly("contact_qp_constraints",
+                               [](const ModelX& self) { return matrix_copy(self.contact_qp_constraints(), true); });
+
+    py::class_<InputX> input(module, "ControllerInput",
+                             "What the robot model and the state estimate give the controller each tick "
+                             "(docs/control.md, \"Inputs and sign conventions\"), sized by the model. Assign whole "
+                             "arrays (the getters return read-only copies); shapes are checked.");
+    input.def(py::init([](const ModelX& m) { return InputX(m); }), py::arg("model"))
+        .def_readwrite("object", &InputX::object, "RigidBodyState of the object's centre, {w} (a reference)")
+        .def_readwrite("desired_pose", &InputX::desired_pose, "Pose x_d (a reference)");
+    def_array(input, "ControllerInput", "inertia", &InputX::inertia, "(Q, Q)", "M(q) (Q, Q), SPD");
+    def_array(input, "ControllerInput", "bias", &InputX::bias, "(Q,)", "h(q, qdot) (Q,): Coriolis, centrifugal, gravity");
+    def_array(input, "ControllerInput", "jacobian", &InputX::jacobian, "(6K, Q)",
+              "J (6K, Q): the contact points' twists [v; w] in {w}");
+    def_array(input, "ControllerInput", "jacobian_rate_qdot", &InputX::jacobian_rate_qdot, "(6K,)", "Jdot qdot (6K,)");
+    def_array(input, "ControllerInput", "positions", &InputX::positions, "(Q,)", "q (Q,)");
+    def_array(input, "ControllerInput", "velocities", &InputX::velocities, "(Q,)", "qdot (Q,)");
+    def_array(input, "ControllerInput", "object_acceleration", &InputX::object_acceleration, "(6,)",
+              "measured [a; alpha] of the object's centre (6,), {w}, for the estimate L(7)");
+    def_array(input, "ControllerInput", "desired_twist", &InputX::desired_twist, "(6,)", "xdot_d (6,)");
+    def_array(input, "ControllerInput", "desired_acceleration", &InputX::desired_acceleration, "(6,)", "xdd_d (6,)");
+    def_array(input, "ControllerInput", "posture", &InputX::posture, "(Q,)", "q_n (Q,), the posture (E12)");
+
+    py::class_<DataX> data(module, "ControllerData",
+                           "Everything a controller tick computes, sized once from the model. Every array field is a "
+                           "read-only copy made when read (docs/python.md, \"Arrays\").");
+    data.def(py::init([](const ModelX& m) { return DataX(m); }), py::arg("model"))
+        .def_property_readonly("arms", &DataX::arms)
+        .def_property_readonly("joints", &DataX::joints)
+        .def_readonly("status", &DataX::status, "ControlStatus")
+        .def_readonly("input_problem", &DataX::input_problem, "ControllerInputProblem")
+        .def_readonly("tightest_force_margin", &DataX::tightest_force_margin, "N")
+        .def_readonly("tightest_moment_margin", &DataX::tightest_moment_margin, "N m")
+        .def_readonly("tightest_margin", &DataX::tightest_margin)
+        .def_readonly("tightest_contact", &DataX::tightest_contact)
+        .def_readonly("qp_ran", &DataX::qp_ran)
+        .def_readonly("qp_status", &DataX::qp_status, "QpStatus")
+        .def_readonly("qp_iterations", &DataX::qp_iterations)
+        .def_readonly("fallback_used", &DataX::fallback_used)
+        .def_readonly("fallback_violation", &DataX::fallback_violation)
+        .def_property_readonly(
+            "dynamics", [](const DataX& self) -> const Projection& { return self.dynamics; },
+            py::return_value_policy::reference_internal,
+            "ProjectedDynamics of this tick (a view that keeps the data alive; its fields are copies)");
+    def_output(data, "torque", &DataX::torque, "tau = tau_u + tau_c + tau_n (Q,)");
+    def_output(data, "motion_torque", &DataX::motion_torque, "tau_u = P Jx^T F (Q,), L(16)");
+    def_output(data, "squeeze_torque", &DataX::squeeze_torque, "tau_c = J^T B z* (Q,)");
+    def_output(data, "posture_torque", &DataX::posture_torque, "tau_n (Q,), E12");
+    def_output(data, "pose_error", &DataX::pose_error, "xtilde (6,)");
+    def_output(data, "twist_error", &DataX::twist_error, "xtilde_dot (6,)");
+    def_output(data, "motion_wrench", &DataX::motion_wrench, "F of L(16) (6,)");
+    def_output(data, "external_wrench", &DataX::external_wrench, "F_x of L(7) (6,)");
+    def_output(data, "contact_wrench_bias", &DataX::contact_wrench_bias, "w_0 (6K,), E11");
+    def_output(data, "contact_wrenches", &DataX::contact_wrenches,
+               "w = w_0 + B z* (6K,): hand i on the object about contact i, {w}");
+    def_output(data, "contact_frame_wrenches", &DataX::contact_frame_wrenches,
+               "(6, K): column i is contact i's wrench [f; t] in its contact frame (f_z the normal force)");
+    def_output(data, "force_margins", &DataX::force_margins, "(K,) N");
+    def_output(data, "moment_margins", &DataX::moment_margins, "(K,) N m");
+    def_output(data, "friction_margins", &DataX::friction_margins, "(K,)");
+    def_output(data, "squeeze", &DataX::squeeze, "z* (6K - 6,)");
+    def_output(data, "joint_acceleration", &DataX::joint_acceleration, "qdd (Q,)");
+    def_output(data, "contact_rotations", &DataX::contact_rotations, "[R_c1 ... R_cK] (3, 3K)");
+
+    module.def(
+        "controller_tick",
+        [](const ModelX& model_, DataX& data_, const InputX& input_) {
+            check_sizes(model_, data_, input_);
+            {
+                py::gil_scoped_release unlocked;
+                controller_tick(model_, data_, input_);
+            }
+            return vector_copy(data_.torque);
+        },
+        py::arg("model"), py::arg("data"), py::arg("input"),
+        R"doc(controller_tick(model, data, input) -> torques (Q,)
+
+One tick of the projected inverse-dynamics controller of Lin et al. (docs/control.md):
+tau = tau_u + tau_c + tau_n with the impedance law L(16), the external-wrench estimate L(7), the
+contact-wrench bias L(23)-(24) (errata E11), the contact QP L(20)-(25) for the least squeeze
+friction allows (errata E10, E13; a least-violating fallback when none exists) and the posture
+torque (errata E12). Fills `data` (status, wrenches, margins, ...) and returns a copy of
+data.torque. Check data.status: the torques are finite whatever it is. Releases the GIL while it
+computes (do not use the same data from two threads at once).)doc");
+}
+
+}  // namespace
+
+void bind_controller(py::module_& module)
+{
+    bind_spatial(module);
+    bind_parameters(module);
+    bind_projection(module);
+    bind_friction(module);
+    bind_controller_types(module);
+}
+
+}  // namespace coopdyn::python

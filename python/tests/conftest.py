@@ -1,0 +1,41 @@
+"""Shared helpers of the Python tests: the references are built here from the definitions in
+docs/ (never from coopdyn's own results)."""
+
+import numpy as np
+import pytest
+
+
+def skew(v):
+    """S(v), with S(v) u = v x u (docs/conventions.md)."""
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+def grasp_block(r_i):
+    """G_i = [[I, 0], [S(r_i), I]] of (24) (docs/model.md)."""
+    g = np.eye(6)
+    g[3:, :3] = skew(r_i)
+    return g
+
+
+def grasp_by_hand(r):
+    return np.hstack([grasp_block(r[:, i]) for i in range(r.shape[1])])
+
+
+def random_spd(rng, n, scale=1.0):
+    a = rng.standard_normal((n, n))
+    return scale * (a @ a.T + n * np.eye(n))
+
+
+def block_diag(*blocks):
+    n = sum(b.shape[0] for b in blocks)
+    out = np.zeros((n, n))
+    k = 0
+    for b in blocks:
+        out[k:k + b.shape[0], k:k + b.shape[0]] = b
+        k += b.shape[0]
+    return out
+
+
+@pytest.fixture
+def rng():
+    return np.random.default_rng(20261127)
