@@ -30,13 +30,15 @@ template <typename Input> Pose<typename Input::Scalar> input_contact_pose(const 
 /// The input carries usable contact poses: flagged filled, finite, unit quaternions.
 template <typename Input> bool contact_poses_usable(const Input& input) noexcept
 {
-    return input.contact_poses_filled && all_finite(input.contact_positions) &&
-           [&] {
-               for (Index i = 0; i < input.contact_orientations.cols(); ++i) {
-                   if (!is_unit_quaternion(input.contact_orientations.col(i))) return false;
-               }
-               return true;
-           }();
+    if (!input.contact_poses_filled || !all_finite(input.contact_positions)) {
+        return false;
+    }
+    for (Index i = 0; i < input.contact_orientations.cols(); ++i) {
+        if (!is_unit_quaternion(input.contact_orientations.col(i))) {
+            return false;
+        }
+    }
+    return true;
 }
 
 /// Whether the object's measured pose and twist are usable (only the acceleration may be bad).
