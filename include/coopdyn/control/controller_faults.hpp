@@ -15,8 +15,6 @@
 #include "coopdyn/spatial/pose.hpp"
 #include "coopdyn/spatial/quaternion.hpp"
 
-#include <algorithm>
-
 namespace coopdyn {
 namespace detail {
 
