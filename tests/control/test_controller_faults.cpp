@@ -241,6 +241,20 @@ TEST(SafeHold, ADropoutLongerThanTheLimitHoldsWithHPlusJTransposeW)
         EXPECT_EQ(data.input_problem, coopdyn::ControllerInputProblem::object_orientation_not_unit);
         EXPECT_FALSE(coopdyn::control_computed(data.status));
     }
+    // A singular J after a computed tick: this tick's h and J with the last computed tick's wrenches.
+    {
+        Data singular_data(model);
+        coopdyn::controller_tick(model, singular_data, c.input);
+        const VectorXd computed = singular_data.torque;
+        const Vector6d external = singular_data.external_wrench;
+        Input singular = c.input;
+        singular.jacobian.row(8).setZero();
+        const VectorXd tau = coopdyn::controller_tick(model, singular_data, singular);
+        EXPECT_EQ(singular_data.status, ControlStatus::singular);
+        const auto world = coopdyn_test::solve_physical_model(c.s, computed, external);
+        const VectorXd reference = singular.bias + singular.jacobian.transpose() * world.applied;
+        EXPECT_LT(relative(tau, reference), 1e-12);
+    }
     // A NaN in M after a computed tick: the same safe hold, from the last computed tick.
     const VectorXd hold_torque = data.hold_torque;
     Input bad = c.input;

@@ -279,6 +279,20 @@ template <typename Model, typename Data> const typename Data::JointVector& contr
     return controller_limit_torque(model, data);
 }
 
+/// A singular configuration (the projection failed): h, the arms' bias, and once a tick has
+/// computed the control also J^T w_hold, that tick's contact wrenches through this tick's J (h and
+/// J are finite here, only their projection failed): the arms' weight compensated and the last
+/// squeeze kept instead of dropping the object (ControllerData::hold_wrenches).
+template <typename Model, typename Data, typename Input>
+const typename Data::JointVector& controller_singular(const Model& model, Data& data, const Input& input) noexcept
+{
+    controller_no_control(data, ControlStatus::singular, input.bias);
+    if (data.hold_ready) {
+        data.torque.noalias() += input.jacobian.transpose().lazyProduct(data.hold_wrenches);
+    }
+    return controller_limit_torque(model, data);
+}
+
 }  // namespace detail
 
 /// \brief One controller tick: fills `data` from `input` and returns the joint torques
@@ -323,8 +337,7 @@ controller_tick(const ControllerModel<Scalar, Arms, Joints, Edges>& model, Contr
     if (data.dynamics.compute_with_basis(input.inertia, input.bias, input.jacobian, input.jacobian_rate_qdot,
                                          input.velocities, data.dynamics.contact_offsets,
                                          data.dynamics.internal_basis) != ProjectionStatus::ok) {
-        detail::controller_no_control(data, ControlStatus::singular, input.bias);
-        return detail::controller_limit_torque(model, data);
+        return detail::controller_singular(model, data, input);
     }
     if (data.replaced_input == ReplacedInput::object_state_from_contacts) {  // the object's twist Jx qdot
         data.object.twist.noalias() = data.dynamics.object_jacobian.lazyProduct(input.velocities);

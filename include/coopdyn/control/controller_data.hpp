@@ -103,6 +103,7 @@ struct ControllerData {
     /// h + J^T w of the last tick that computed the control (its bias and its predicted contact
     /// wrenches): what a safe hold sends (ControlStatus::safe_hold). Valid when hold_ready.
     JointVector hold_torque;
+    StackVector hold_wrenches;  ///< that tick's w (a singular tick sends h + J^T w_hold)
     bool hold_ready = false;  ///< some tick computed the control: there is a grasp to hold
     /// Slip, when the input carries the contacts' poses and the object's pose is measured
     /// (slip_measured): column i of slip_displacement is contact i's measured origin minus where
@@ -180,6 +181,7 @@ ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
       contact_rotations(Eigen::Matrix<Scalar, 3, times_three(Arms)>::Zero(3, 3 * model.arms())),
       dynamics(model.arms(), model.joints()),
       hold_torque(JointVector::Zero(model.joints())),
+      hold_wrenches(StackVector::Zero(6 * model.arms())),
       slip_displacement(Eigen::Matrix<Scalar, 3, Arms>::Zero(3, model.arms())),
       slip_distance(ArmVector::Zero(model.arms())),
       slip_angle(ArmVector::Zero(model.arms())),

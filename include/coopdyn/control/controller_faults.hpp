@@ -199,8 +199,9 @@ template <typename Model, typename Data> void controller_raise_squeeze(const Mod
 /// estimated load balanced (G w = -F_x), the arms' weight compensated.
 template <typename Data, typename Input> void controller_record_hold(Data& data, const Input& input) noexcept
 {
+    data.hold_wrenches = data.contact_wrenches;
     data.hold_torque = input.bias;
-    data.hold_torque.noalias() += input.jacobian.transpose().lazyProduct(data.contact_wrenches);
+    data.hold_torque.noalias() += input.jacobian.transpose().lazyProduct(data.hold_wrenches);
     data.hold_ready = true;
 }
 

@@ -24,8 +24,10 @@ enum class ControlStatus {
     /// fallback's squeeze is applied (or none if that failed too). Rare; see qp_status.
     qp_failed,
     /// The arms are at a singular configuration (J lost rank, or the object cannot be moved in
-    /// some direction): no torques can be computed; the torque is h (the arms' bias compensated,
-    /// no squeeze). ControllerData::dynamics.status says which projection failed.
+    /// some direction): no control can be computed; the torque is h + J^T w_hold (this tick's h
+    /// and J, the contact wrenches of the last tick that computed the control: the last squeeze
+    /// kept), or h before any such tick. ControllerData::dynamics.status says which projection
+    /// failed.
     singular,
     /// An input is not finite, a quaternion is not unit, or M is not positive definite
     /// (ControllerData::input_problem names it) and no tick has computed the control yet, so there
