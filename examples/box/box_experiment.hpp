@@ -154,7 +154,7 @@ template <int K, int Q> struct TickLogOf {
     double predicted_moment_margin = 0.0;  ///< tightest moment-row margin of the QP's wrenches (N m)
     PalmArray<double, K> slip{};             ///< m, the box relative to each palm since the start
     coopdyn::ControlStatus status = coopdyn::ControlStatus::ok;
-    bool qp_ran = false;  ///< the contact QP ran this tick (not after an invalid_input or singular tick)
+    bool qp_ran = false;  ///< the contact QP ran this tick (not after an invalid_input, singular or safe_hold tick)
     coopdyn::QpStatus qp_status = coopdyn::QpStatus::solved;
     int qp_iterations = 0;
     JointVectorOf<Q> motion_torque{};   ///< tau_u

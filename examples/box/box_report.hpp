@@ -61,7 +61,7 @@ BoxSummary summarise(const BoxScenario& scenario, const std::string& plant, cons
     s.min_true_force_margin = s.min_true_moment_margin = std::numeric_limits<double>::infinity();
     int rest_samples = 0;
     for (const TickLogOf<K, Q>& row : run.log) {
-        // A tick that computed no control (invalid_input, singular) has no prediction to compare:
+        // A tick that computed no control (invalid_input, singular, safe_hold) has no prediction to compare:
         // its outputs are reset to zero (docs/control.md, "After a failed tick").
         const bool predicted = coopdyn::control_computed(row.status);
         const bool held_by_person = scenario.person_hold && row.time >= scenario.person_hold->start &&

@@ -401,6 +401,11 @@ MujocoErrors compare_with_mujoco(const KDL::Tree& tree, const Robot& robot, cons
         e.bias = std::max(e.bias, relative_error(input.bias, Eigen::Map<const Eigen::VectorXd>(d->qfrc_bias, m->nv)));
         e.jacobian = std::max(e.jacobian, relative_error(input.jacobian, jacobian));
         e.pose = std::max(e.pose, (pose.translation() - position).norm() + (pose.linear() - Eigen::Matrix3d(rotation)).norm());
+        // The contact's pose read into the input (for the controller's faults), against MuJoCo's too.
+        EXPECT_TRUE(input.contact_poses_filled);
+        const Eigen::Quaterniond read_orientation(Eigen::Vector4d(input.contact_orientations.col(0)));
+        e.pose = std::max(e.pose, (Eigen::Vector3d(input.contact_positions.col(0)) - position).norm() +
+                                      (read_orientation.toRotationMatrix() - Eigen::Matrix3d(rotation)).norm());
     }
     return e;
 }

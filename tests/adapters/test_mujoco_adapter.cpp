@@ -378,6 +378,28 @@ TEST_P(Conformance, NothingOfTheObjectOrOtherRobotsLeaksIn)
     }
 }
 
+TEST_P(Conformance, ReadFillsTheContactPosesFromTheSites)
+{
+    std::mt19937 random(17);
+    randomise(model_.get(), data_.get(), random);
+    coopdyn::ControllerInput<double> input(arms_->arms(), arms_->joints());
+    arms_->read(model_.get(), data_.get(), input);
+    EXPECT_TRUE(input.contact_poses_filled);
+    for (Index i = 0; i < arms_->arms(); ++i) {
+        // MuJoCo's own frame of the contact (a site's or a body's): its position, and its rotation
+        // matrix (row-major) whose columns the quaternion must turn the unit axes onto.
+        const auto& contact = arms_->contact(i);
+        const mjtNum* xpos = (contact.is_site ? data_->site_xpos : data_->xpos) + 3 * contact.id;
+        const mjtNum* xmat = (contact.is_site ? data_->site_xmat : data_->xmat) + 9 * contact.id;
+        EXPECT_EQ(Eigen::Vector3d(input.contact_positions.col(i)), Eigen::Vector3d(xpos[0], xpos[1], xpos[2])) << i;
+        const Eigen::Quaterniond q(Eigen::Vector4d(input.contact_orientations.col(i)));
+        for (int c = 0; c < 3; ++c) {
+            const Eigen::Vector3d column(xmat[c], xmat[3 + c], xmat[6 + c]);
+            EXPECT_LT((q * Eigen::Vector3d::Unit(c) - column).norm(), 1e-12) << i << ", axis " << c;
+        }
+    }
+}
+
 TEST_P(Conformance, ReadAllocatesNothingAndLeavesDataAsItWas)
 {
     std::mt19937 random(15);

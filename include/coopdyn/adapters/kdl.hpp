@@ -155,7 +155,8 @@ public:
     /// palm's outward normal for the shipped robots, docs/adapters.md "Shipped robots").
     Eigen::Isometry3d contact_pose(Index arm) const;
 
-    /// Fills input.inertia, bias, jacobian, jacobian_rate_qdot, positions and velocities at (q,
+    /// Fills input.inertia, bias, jacobian, jacobian_rate_qdot, positions, velocities and the
+    /// contacts' poses (contact_positions, contact_orientations, contact_poses_filled) at (q,
     /// qdot); leaves the rest of \p input alone. \p input must have been built with arms() and
     /// joints(). Returns false when a KDL solver reported an error (input is then partly filled).
     bool read(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
@@ -425,7 +426,16 @@ bool KdlArms<Arms, Joints>::read(const Eigen::Ref<const Eigen::VectorXd>& q,
             input.jacobian_rate_qdot(row + r) = arm.rate.vel(r);
             input.jacobian_rate_qdot(row + 3 + r) = arm.rate.rot(r);
         }
+        // The contact's pose (the forward pass's tip frame): the controller's dropout prediction
+        // and slip measurement (docs/control.md, "Faults: dropout, safe hold, slip, torque limits").
+        const KDL::Frame& tip = s.poses[static_cast<std::size_t>(arm.segment)];
+        double x = 0, y = 0, z = 0, w = 1;
+        tip.M.GetQuaternion(x, y, z, w);
+        const auto column = static_cast<Index>(i);
+        input.contact_positions.col(column) << tip.p(0), tip.p(1), tip.p(2);
+        input.contact_orientations.col(column) << x, y, z, w;
     }
+    input.contact_poses_filled = true;
     return ok;
 }
 

@@ -73,9 +73,10 @@ public:
     int qpos_address(Index j) const noexcept { return selection_.joint(j).qpos; }
     const detail::MujocoContact& contact(Index i) const noexcept { return selection_.contact(i); }
 
-    /// \brief Fills input.inertia, bias, jacobian, jacobian_rate_qdot, positions and velocities
-    /// (the object's state and the desired motion are the caller's). Allocation-free; `data` is
-    /// read only. `model` is the one the adapter was built from or a copy of it.
+    /// \brief Fills input.inertia, bias, jacobian, jacobian_rate_qdot, positions and velocities,
+    /// and the contacts' poses (read_contact_poses; the object's state and the desired motion are
+    /// the caller's). Allocation-free; `data` is read only. `model` is the one the adapter was
+    /// built from or a copy of it.
     void read(const mjModel* model, const mjData* data, Input& input) const noexcept
     {
         read_inertia(model, data, input.inertia);
@@ -84,6 +85,20 @@ public:
         read_jacobian_rate_qdot(model, data, input.jacobian_rate_qdot);
         read_positions(data, input.positions);
         read_velocities(data, input.velocities);
+        read_contact_poses(data, input);
+    }
+
+    /// input.contact_positions and contact_orientations from the contact sites' frames (the arms'
+    /// forward kinematics), and input.contact_poses_filled: what the controller predicts the
+    /// object's pose from during a dropout and measures each contact's slip with (docs/control.md,
+    /// "Faults: dropout, safe hold, slip, torque limits").
+    void read_contact_poses(const mjData* data, Input& input) const noexcept
+    {
+        for (Index i = 0; i < arms(); ++i) {
+            input.contact_positions.col(i) = contact_position(data, i);
+            input.contact_orientations.col(i) = Eigen::Quaterniond(contact_rotation(data, i)).normalized().coeffs();
+        }
+        input.contact_poses_filled = true;
     }
 
     /// M restricted to the chosen joints (Q x Q), armature included (MuJoCo adds it to qM).

@@ -17,6 +17,8 @@
 
 #include "coopdyn/config.hpp"
 #include "coopdyn/control/contact_wrenches.hpp"
+#include "coopdyn/control/controller_data.hpp"
+#include "coopdyn/control/controller_faults.hpp"
 #include "coopdyn/control/controller_model.hpp"
 #include "coopdyn/control/controller_status.hpp"
 #include "coopdyn/control/projected_dynamics.hpp"
@@ -30,154 +32,6 @@
 #include <limits>
 
 namespace coopdyn {
-
-/// \brief Everything a controller tick computes (outputs first) and the buffers it needs, sized
-/// once from the model: controller_tick allocates nothing (fixed sizes, and Dynamic ones after
-/// construction).
-template <typename ScalarType, int ArmsAtCompileTime = Eigen::Dynamic, int JointsAtCompileTime = Eigen::Dynamic,
-          int EdgesAtCompileTime = 8>
-struct ControllerData {
-    using Scalar = ScalarType;
-    using Model = ControllerModel<Scalar, ArmsAtCompileTime, JointsAtCompileTime, EdgesAtCompileTime>;
-    static constexpr int Arms = Model::Arms;
-    static constexpr int Joints = Model::Joints;
-    static constexpr int Stack = Model::Stack;
-    static constexpr int Internal = Model::Internal;
-    static constexpr int Rows = Model::Rows;
-    using JointVector = Eigen::Matrix<Scalar, Joints, 1>;
-    using JointMatrix = Eigen::Matrix<Scalar, Joints, Joints>;
-    using StackVector = Eigen::Matrix<Scalar, Stack, 1>;
-    using InternalVector = Eigen::Matrix<Scalar, Internal, 1>;
-    using InternalMatrix = Eigen::Matrix<Scalar, Internal, Internal>;
-    using ArmVector = Eigen::Matrix<Scalar, Arms, 1>;
-
-    explicit ControllerData(const Model& model);
-
-    Index arms() const noexcept { return friction_margins.size(); }
-    Index joints() const noexcept { return torque.size(); }
-
-    // ---- outputs of the last tick -------------------------------------------------------------
-    ControlStatus status = ControlStatus::ok;
-    /// The refused input when status is invalid_input, otherwise none (to_string names it).
-    ControllerInputProblem input_problem = ControllerInputProblem::none;
-    JointVector torque;                  ///< tau = tau_u + tau_c + tau_n, what to send to the arms
-    JointVector motion_torque;           ///< tau_u = P Jx^T F, L(16)
-    JointVector squeeze_torque;          ///< tau_c = J^T B z*
-    JointVector posture_torque;          ///< tau_n (E12)
-    Vector6<Scalar> pose_error;          ///< xtilde = [p - p_d; 2 d_eta d_eps]
-    Vector6<Scalar> twist_error;         ///< xtilde_dot = xdot - xdot_d
-    Vector6<Scalar> motion_wrench;       ///< F of L(16), on the object at its centre, {w}
-    Vector6<Scalar> external_wrench;     ///< F_x of L(7), on the object at its centre, {w}
-    StackVector contact_wrench_bias;     ///< w_0 = -G^+ F_x - eta (E11), the wrenches without squeeze
-    StackVector contact_wrenches;        ///< w = w_0 + B z*: hand i on the object, about contact i, {w}
-    /// Column i: contact i's predicted wrench [f; t] in its contact frame {c_i}: f_z is the normal
-    /// force, (f_x, f_y) the tangential force, t the moments about the contact point.
-    Eigen::Matrix<Scalar, 6, Arms> contact_frame_wrenches;
-    /// Per contact, the margins of its predicted wrench split by the rows' units (friction_margins
-    /// of friction.hpp): force_margins over the unilateral and pyramid rows (N), moment_margins
-    /// over the torsion and centre-of-pressure rows (N m); < 0: that row is violated.
-    ArmVector force_margins;
-    ArmVector moment_margins;
-    Scalar tightest_force_margin = Scalar(0);   ///< the smallest of force_margins (N)
-    Scalar tightest_moment_margin = Scalar(0);  ///< the smallest of moment_margins (N m)
-    /// Per contact, friction_margin of its predicted wrench: the smaller of its force and moment
-    /// margins, which mixes N and N m (kept for compatibility; the split margins above say which).
-    ArmVector friction_margins;
-    Scalar tightest_margin = Scalar(0);  ///< the smallest of friction_margins (< 0: a row is violated)
-    Index tightest_contact = 0;          ///< the contact it belongs to
-    InternalVector squeeze;              ///< z*, the internal-wrench coordinates (N, N m; B orthonormal)
-    bool qp_ran = false;                 ///< the contact QP ran this tick (false after a failed tick)
-    QpStatus qp_status = QpStatus::solved;  ///< of the contact QP proper when qp_ran; solved (none failed) otherwise
-    int qp_iterations = 0;               ///< its steps (plus the fallback's when it ran); 0 when !qp_ran
-    bool fallback_used = false;          ///< the least-violating fallback supplied z*
-    Scalar fallback_violation = Scalar(0);  ///< s, the worst row's violation under the fallback (>= 0)
-    /// qdd under tau_u + tau_c (tau_c changes none) with the estimated F_x; the posture torque adds
-    /// the self-motion M^-1 tau_n, which moves neither the object nor the contacts.
-    JointVector joint_acceleration;
-    Eigen::Matrix<Scalar, 3, times_three(Arms)> contact_rotations;  ///< [R_c1 ... R_cK], {c_i} to {w} (zero after invalid_input)
-    /// Jx, Lambda_c, hc, Jr^T, ... of this tick, and the grasp it was computed for: the contact
-    /// offsets r_i = R_o p_i (dynamics.contact_offsets, {w}) and the internal-wrench basis
-    /// B = blkdiag(R6, ..., R6) B_body (dynamics.internal_basis), which the tick writes there
-    /// directly (one owner). The tick does not form P and Mc (dynamics.form_projection_matrices
-    /// is false: set it to read dynamics.projector and dynamics.constrained_inertia). After
-    /// invalid_input the projection did not run (status marks it): its outputs are the last
-    /// computed ones.
-    ProjectedDynamics<Scalar, Arms, Joints> dynamics;
-
-    // ---- workspace -----------------------------------------------------------------------------
-    Llt<JointMatrix> inertia_factor;                       ///< M = L L^T: the input check that M is SPD
-    InternalMatrix hessian;
-    InternalVector gradient;
-    Eigen::Matrix<Scalar, Rows, 1> bounds;
-    /// The contact QP and its least-violating fallback are solved by one QpSolver type, (n + 1)
-    /// variables and (m + 1) rows, so that it is compiled once, not for two sizes (it was a tenth
-    /// of the controller's compile time; docs/performance.md, "Compile time and CI"). The contact
-    /// QP in z is posed there in (z, t): H' = blkdiag(H, eta), g' = (g, 0), rows [C, 0; 0, -1],
-    /// d' = (d, 0) (padded_problem). t = 0 at the unconstrained minimum and no row moves it
-    /// (none has a t entry but -t <= 0, which t = 0 satisfies), so the iterates are the contact
-    /// QP's own; the fallback's rows are [C, -|c|; 0, -1] (controller_fallback).
-    using PaddedSolver = QpSolver<Scalar, plus_one(Internal), plus_one(Rows)>;
-    Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)> padded_hessian;
-    Eigen::Matrix<Scalar, plus_one(Internal), 1> padded_gradient;
-    Eigen::Matrix<Scalar, plus_one(Rows), plus_one(Internal)> padded_constraints;  // the fallback's (construction only)
-    Eigen::Matrix<Scalar, plus_one(Rows), 1> padded_bounds;
-    PaddedSolver qp;           ///< the contact QP, padded
-    PaddedSolver fallback_qp;  ///< the least-violating fallback
-    JointVector joint_scratch;
-    bool warm = false;  ///< the QP solved last tick (its active set starts this one)
-};
-
-template <typename Scalar, int Arms, int Joints, int Edges>
-ControllerData<Scalar, Arms, Joints, Edges>::ControllerData(const Model& model)
-    : torque(JointVector::Zero(model.joints())),
-      motion_torque(JointVector::Zero(model.joints())),
-      squeeze_torque(JointVector::Zero(model.joints())),
-      posture_torque(JointVector::Zero(model.joints())),
-      pose_error(Vector6<Scalar>::Zero()),
-      twist_error(Vector6<Scalar>::Zero()),
-      motion_wrench(Vector6<Scalar>::Zero()),
-      external_wrench(Vector6<Scalar>::Zero()),
-      contact_wrench_bias(StackVector::Zero(6 * model.arms())),
-      contact_wrenches(StackVector::Zero(6 * model.arms())),
-      contact_frame_wrenches(Eigen::Matrix<Scalar, 6, Arms>::Zero(6, model.arms())),
-      force_margins(ArmVector::Zero(model.arms())),
-      moment_margins(ArmVector::Zero(model.arms())),
-      friction_margins(ArmVector::Zero(model.arms())),
-      squeeze(InternalVector::Zero(6 * (model.arms() - 1))),
-      joint_acceleration(JointVector::Zero(model.joints())),
-      contact_rotations(Eigen::Matrix<Scalar, 3, times_three(Arms)>::Zero(3, 3 * model.arms())),
-      dynamics(model.arms(), model.joints()),
-      inertia_factor(model.joints()),
-      hessian(InternalMatrix::Zero(6 * (model.arms() - 1), 6 * (model.arms() - 1))),
-      gradient(InternalVector::Zero(6 * (model.arms() - 1))),
-      bounds(Eigen::Matrix<Scalar, Rows, 1>::Zero(model.rows())),
-      padded_hessian(Eigen::Matrix<Scalar, plus_one(Internal), plus_one(Internal)>::Zero(6 * model.arms() - 5,
-                                                                                         6 * model.arms() - 5)),
-      padded_gradient(Eigen::Matrix<Scalar, plus_one(Internal), 1>::Zero(6 * model.arms() - 5)),
-      padded_constraints(
-          Eigen::Matrix<Scalar, plus_one(Rows), plus_one(Internal)>::Zero(model.rows() + 1, 6 * model.arms() - 5)),
-      padded_bounds(Eigen::Matrix<Scalar, plus_one(Rows), 1>::Zero(model.rows() + 1)),
-      qp(6 * model.arms() - 5, model.rows() + 1),
-      fallback_qp(6 * model.arms() - 5, model.rows() + 1),
-      joint_scratch(JointVector::Zero(model.joints()))
-{
-    dynamics.form_projection_matrices = false;
-    // Both QPs' rows depend on the model only: set once, each tick solves with H', g', d'. The
-    // contact QP's [C, 0; 0, -1] first, then the fallback's [C, -|c|; 0, -1].
-    const Index n = hessian.rows();
-    const Index m = bounds.size();
-    padded_constraints.topLeftCorner(m, n) = model.contact_qp_constraints();
-    padded_constraints(m, n) = Scalar(-1);
-    qp.set_constraints(padded_constraints);
-    padded_constraints.col(n).head(m) = -model.row_norms();
-    fallback_qp.set_constraints(padded_constraints);
-    // The contact QP keeps the step cap of its own size, 10 (n + m), not the padded one's.
-    const int limit = model.qp_options().iteration_limit;
-    qp.set_iteration_limit(limit > 0 ? limit : PaddedSolver::default_iteration_limit(n, m));
-    if (limit > 0) {
-        fallback_qp.set_iteration_limit(limit);
-    }
-}
 
 namespace detail {
 
@@ -197,21 +51,22 @@ void controller_grasp(const Model& model, Data& data, const Matrix3<typename Mod
     }
 }
 
-/// L(16) and L(7): the pose and twist errors, F, tau_u = P Jx^T F and the estimate F_x.
+/// L(16) and L(7): the pose and twist errors, F, tau_u = P Jx^T F and the estimate F_x, from the
+/// object's state this tick uses (data.object: measured or predicted, controller_object_state).
 template <typename Model, typename Data, typename Input>
 void controller_impedance(const Model& model, Data& data, const Input& input) noexcept
 {
     using Scalar = typename Model::Scalar;
     auto& dynamics = data.dynamics;  // non-const: project() uses its workspace
-    data.pose_error.template head<3>() = input.object.pose.position - input.desired_pose.position;
+    data.pose_error.template head<3>() = data.object.pose.position - input.desired_pose.position;
     data.pose_error.template tail<3>() = rotational_stiffness_torque(
-        orientation_error(input.object.pose.orientation, input.desired_pose.orientation), Scalar(1));
-    data.twist_error = input.object.twist - input.desired_twist;
+        orientation_error(data.object.pose.orientation, input.desired_pose.orientation), Scalar(1));
+    data.twist_error = data.object.twist - input.desired_twist;
     const Vector6<Scalar> spring_damper = model.damping() * data.twist_error + model.stiffness() * data.pose_error;
     data.motion_wrench = dynamics.task_bias + dynamics.task_inertia * input.desired_acceleration - spring_damper;
     data.joint_scratch.noalias() = dynamics.object_jacobian.transpose().lazyProduct(data.motion_wrench);
     dynamics.project(data.joint_scratch, data.motion_torque);
-    data.external_wrench = dynamics.task_inertia * (input.object_acceleration - input.desired_acceleration) + spring_damper;
+    data.external_wrench = dynamics.task_inertia * (data.object_acceleration - input.desired_acceleration) + spring_damper;
 }
 
 /// The contact QP in z (L(20)-(25), E10): per contact the rows C = A_w B_i (constant,
@@ -364,8 +219,8 @@ void controller_posture(const Model& model, Data& data, const Input& input) noex
     data.dynamics.self_motion_projection(tau_0, data.posture_torque);
 }
 
-/// Every output of a tick that computes no control (invalid_input, singular): `torque` (zero or
-/// h) and the status; everything the later steps compute is reset to zero (NaN-free), the QP
+/// Every output of a tick that computes no control (invalid_input, singular, safe_hold): `torque`
+/// (zero, h or the hold torque) and the status; everything the later steps compute is reset to zero (NaN-free), the QP
 /// marked as not run (qp_ran false, qp_iterations 0, qp_status solved: none failed), so that no
 /// output holds a previous tick's value (docs/control.md, "After a failed tick").
 template <typename Data, typename Torque>
@@ -399,17 +254,52 @@ void controller_no_control(Data& data, ControlStatus status, const Torque& torqu
     data.fallback_violation = Scalar(0);
     data.joint_acceleration.setZero();
     data.warm = false;
-    if (status == ControlStatus::invalid_input) {  // the grasp (step 2) did not run either
+    data.replaced_input = ReplacedInput::none;
+    data.slip_measured = false;
+    data.slip_displacement.setZero();
+    data.slip_distance.setZero();
+    data.slip_angle.setZero();
+    data.slipping.setConstant(false);
+    data.slipping_contacts = 0;
+    if (status != ControlStatus::singular) {  // the grasp (step 2) did not run either
         data.contact_rotations.setZero();
     }
+}
+
+/// A tick that cannot compute the control (an unusable input, or the object's state predicted
+/// past FaultOptions::prediction_limit): the safe hold, data.hold_torque, once a tick has computed
+/// the control (a grasp to hold); before that invalid_input with zero torque (nothing held yet).
+template <typename Model, typename Data> const typename Data::JointVector& controller_hold_or_refuse(const Model& model, Data& data) noexcept
+{
+    if (data.hold_ready) {
+        controller_no_control(data, ControlStatus::safe_hold, data.hold_torque);
+    } else {
+        controller_no_control(data, ControlStatus::invalid_input, Data::JointVector::Zero(model.joints()));
+    }
+    return controller_limit_torque(model, data);
+}
+
+/// A singular configuration (the projection failed): h, the arms' bias, and once a tick has
+/// computed the control also J^T w_hold, that tick's contact wrenches through this tick's J (h and
+/// J are finite here, only their projection failed): the arms' weight compensated and the last
+/// squeeze kept instead of dropping the object (ControllerData::hold_wrenches).
+template <typename Model, typename Data, typename Input>
+const typename Data::JointVector& controller_singular(const Model& model, Data& data, const Input& input) noexcept
+{
+    controller_no_control(data, ControlStatus::singular, input.bias);
+    if (data.hold_ready) {
+        data.torque.noalias() += input.jacobian.transpose().lazyProduct(data.hold_wrenches);
+    }
+    return controller_limit_torque(model, data);
 }
 
 }  // namespace detail
 
 /// \brief One controller tick: fills `data` from `input` and returns the joint torques
-/// tau = tau_u + tau_c + tau_n (data.torque). noexcept; allocates nothing. Check data.status: the
-/// torques are finite whatever it is (zero for an invalid input, h at a singular configuration,
-/// the least-violating squeeze when friction cannot hold the load).
+/// tau = tau_u + tau_c + tau_n (data.torque), clamped by the torque limits when the model has them.
+/// noexcept; allocates nothing. Check data.status: the torques are finite whatever it is; a missing
+/// object measurement is predicted (degraded), an unusable input after a computed tick holds the
+/// grasp (safe_hold); docs/control.md, "Every status's torque".
 template <typename Scalar, int Arms, int Joints, int Edges>
 const typename ControllerData<Scalar, Arms, Joints, Edges>::JointVector&
 controller_tick(const ControllerModel<Scalar, Arms, Joints, Edges>& model, ControllerData<Scalar, Arms, Joints, Edges>& data,
@@ -420,38 +310,53 @@ controller_tick(const ControllerModel<Scalar, Arms, Joints, Edges>& model, Contr
                               input.inertia.cols() == model.joints() && input.bias.size() == model.joints() &&
                               input.jacobian.cols() == model.joints() && input.positions.size() == model.joints() &&
                               input.velocities.size() == model.joints() && input.posture.size() == model.joints() &&
-                              input.jacobian_rate_qdot.size() == 6 * model.arms(),
+                              input.jacobian_rate_qdot.size() == 6 * model.arms() &&
+                              input.contact_positions.cols() == model.arms() &&
+                              input.contact_orientations.cols() == model.arms(),
                           "controller_tick: data or input sized for another controller model");
-    data.input_problem = detail::controller_input_problem(input);
+    const ControllerInputProblem object_problem = detail::object_measurement_problem(input);
+    detail::controller_remember_measurement(model, data, input, object_problem);
+    data.input_problem = detail::arm_input_problem(input);
+    if (data.input_problem == ControllerInputProblem::none) {
+        data.inertia_factor.compute(input.inertia);
+        if (!regular_llt(data.inertia_factor)) {  // the pivot policy, numerics/pivot_policy.hpp
+            data.input_problem = ControllerInputProblem::inertia_not_positive_definite;
+        }
+    }
     if (data.input_problem != ControllerInputProblem::none) {
-        detail::controller_no_control(data, ControlStatus::invalid_input, Eigen::Matrix<Scalar, Joints, 1>::Zero(model.joints()));
-        return data.torque;
+        return detail::controller_hold_or_refuse(model, data);
     }
-    data.inertia_factor.compute(input.inertia);
-    if (!regular_llt(data.inertia_factor)) {  // the pivot policy, numerics/pivot_policy.hpp
-        data.input_problem = ControllerInputProblem::inertia_not_positive_definite;
-        detail::controller_no_control(data, ControlStatus::invalid_input, Eigen::Matrix<Scalar, Joints, 1>::Zero(model.joints()));
-        return data.torque;
+    data.input_problem = object_problem;
+    if (!detail::controller_object_state(model, data, input, object_problem)) {
+        return detail::controller_hold_or_refuse(model, data);
     }
-    detail::controller_grasp(model, data, input.object.pose.orientation.toRotationMatrix());
+    detail::controller_grasp(model, data, data.object.pose.orientation.toRotationMatrix());
     // r and B are already the projection's own (controller_grasp wrote them there): passing them
     // back makes compute_with_basis's copies self-assignments, harmless and cheaper than a second
     // owner kept in sync.
     if (data.dynamics.compute_with_basis(input.inertia, input.bias, input.jacobian, input.jacobian_rate_qdot,
                                          input.velocities, data.dynamics.contact_offsets,
                                          data.dynamics.internal_basis) != ProjectionStatus::ok) {
-        detail::controller_no_control(data, ControlStatus::singular, input.bias);
-        return data.torque;
+        return detail::controller_singular(model, data, input);
     }
+    if (data.replaced_input == ReplacedInput::object_state_from_contacts) {  // the object's twist Jx qdot
+        data.object.twist.noalias() = data.dynamics.object_jacobian.lazyProduct(input.velocities);
+    }
+    detail::controller_slip(model, data, input);
     detail::controller_impedance(model, data, input);
     contact_wrench_bias(data.dynamics, input.inertia, input.bias, data.motion_torque, data.external_wrench,
                         data.joint_acceleration, data.contact_wrench_bias, data.joint_scratch);
     detail::controller_contact_qp(model, data);
+    detail::controller_raise_squeeze(model, data);
     detail::controller_solve_squeeze(model, data);
     detail::controller_contact_outputs(model, data);
     detail::controller_posture(model, data, input);
     data.torque = data.motion_torque + data.squeeze_torque + data.posture_torque;
-    return data.torque;
+    if (data.replaced_input != ReplacedInput::none && data.status == ControlStatus::ok) {
+        data.status = ControlStatus::degraded;
+    }
+    detail::controller_record_hold(data, input);
+    return detail::controller_limit_torque(model, data);
 }
 
 }  // namespace coopdyn

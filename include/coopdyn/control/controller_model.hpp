@@ -2,7 +2,8 @@
 /// \brief The constant part of the projected inverse-dynamics controller of K arms holding an
 /// object through flat contacts (Lin et al.): the grasp, each contact's friction, the desired
 /// impedance, the posture gains, the squeeze objective and the QP's options, validated once at
-/// construction; and the per-tick input. docs/control.md, "The controller".
+/// construction; and, through controller_input.hpp, the per-tick input. docs/control.md, "The
+/// controller".
 ///
 /// Use:
 ///
@@ -27,6 +28,7 @@
 #include "coopdyn/spatial/spatial_vector.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -107,6 +109,25 @@ template <typename ScalarType> struct ContactQpOptions {
     Scalar fallback_weight = Scalar(1e6);
 };
 
+/// \brief What the controller does when an input fails or the grasp slips (docs/control.md,
+/// "Faults: dropout, safe hold, slip, torque limits"). Times in s, distances in m, angles in rad.
+template <typename ScalarType> struct FaultOptions {
+    using Scalar = ScalarType;
+    /// The controller's tick period (s), > 0: how far a predicted object state is propagated per
+    /// tick, and how the prediction's age is counted.
+    Scalar tick_period = Scalar(1e-3);
+    /// How long (s), >= 0, the object's state may be predicted (ControlStatus::degraded) after its
+    /// last valid measurement before the tick enters the safe hold (ControlStatus::safe_hold).
+    Scalar prediction_limit = Scalar(0.1);
+    /// A contact slips when the distance (m) between its measured contact point and the one the
+    /// measured object pose and the model's contact frame put it at exceeds this, > 0 ...
+    Scalar slip_distance_threshold = Scalar(5e-3);
+    /// ... or the angle (rad) between the measured and the predicted contact frame exceeds this, > 0.
+    Scalar slip_angle_threshold = Scalar(0.05);
+    /// While a contact slips, its minimum normal force f_min is multiplied by this, >= 1 (1: off).
+    Scalar slip_squeeze_factor = Scalar(1);
+};
+
 /// \brief Everything the controller model is built from (plain data; validated by ControllerModel).
 template <typename ScalarType> struct ControllerParameters {
     using Scalar = ScalarType;
@@ -121,6 +142,13 @@ template <typename ScalarType> struct ControllerParameters {
     DynamicVector posture_damping;            ///< D_n (Q), N m s/rad
     SqueezeObjective<Scalar> objective{};
     ContactQpOptions<Scalar> qp{};
+    /// Per joint, the largest |torque| the tick may send (N m; Q entries, each > 0), applied after
+    /// the QP to every torque the tick returns, safe hold included; empty: no limit.
+    DynamicVector torque_limits;
+    /// Per joint, the largest change of the sent torque from one tick to the next (N m per tick;
+    /// Q entries, each > 0); empty: no limit.
+    DynamicVector torque_rate_limits;
+    FaultOptions<Scalar> faults{};
 };
 
 /// Rows of the contact QP for K contacts of n-edge pyramids: K (n + 7) (Dynamic passes through).
@@ -157,11 +185,17 @@ public:
           stiffness_(parameters.stiffness),
           damping_(parameters.damping),
           objective_(parameters.objective),
-          qp_options_(parameters.qp)
+          qp_options_(parameters.qp),
+          faults_(parameters.faults)
     {
         validate(parameters);
         posture_stiffness_ = parameters.posture_stiffness;
         posture_damping_ = parameters.posture_damping;
+        has_torque_limits_ = parameters.torque_limits.size() > 0;
+        has_torque_rate_limits_ = parameters.torque_rate_limits.size() > 0;
+        torque_limits_ = has_torque_limits_ ? JointVector(parameters.torque_limits) : JointVector::Zero(joints_);
+        torque_rate_limits_ =
+            has_torque_rate_limits_ ? JointVector(parameters.torque_rate_limits) : JointVector::Zero(joints_);
         build_rows();
     }
 
@@ -182,6 +216,13 @@ public:
     const JointVector& posture_damping() const noexcept { return posture_damping_; }
     const SqueezeObjective<Scalar>& objective() const noexcept { return objective_; }
     const ContactQpOptions<Scalar>& qp_options() const noexcept { return qp_options_; }
+    const FaultOptions<Scalar>& faults() const noexcept { return faults_; }
+    /// Whether ControllerParameters::torque_limits / torque_rate_limits were given, and their values
+    /// (zero when not given).
+    bool has_torque_limits() const noexcept { return has_torque_limits_; }
+    bool has_torque_rate_limits() const noexcept { return has_torque_rate_limits_; }
+    const JointVector& torque_limits() const noexcept { return torque_limits_; }
+    const JointVector& torque_rate_limits() const noexcept { return torque_rate_limits_; }
 
     /// The friction rows of all contacts in their contact frames, stacked (rows() x 6; contact i's
     /// block starts at row_offset(i) and has n_i + 7 rows, in contact_frame_friction_rows' order),
@@ -206,6 +247,7 @@ public:
 
 private:
     void validate(const ControllerParameters<Scalar>& parameters) const;
+    void validate_faults(const ControllerParameters<Scalar>& parameters) const;
     void build_rows();
 
     Index joints_;
@@ -219,6 +261,11 @@ private:
     JointVector posture_damping_;
     SqueezeObjective<Scalar> objective_;
     ContactQpOptions<Scalar> qp_options_;
+    FaultOptions<Scalar> faults_;
+    bool has_torque_limits_ = false;
+    bool has_torque_rate_limits_ = false;
+    JointVector torque_limits_;
+    JointVector torque_rate_limits_;
     RowMatrix friction_rows_;
     RowVector friction_bounds_;
     RowVector friction_row_norms_;
@@ -283,6 +330,43 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::validate(const ControllerPara
                      "must be non-negative (0 = the default), got " + std::to_string(parameters.qp.iteration_limit));
     }
     detail::require_positive(parameters.qp.fallback_weight, model, "qp.fallback_weight");
+    validate_faults(parameters);
+}
+
+/// The torque limits (each entry > 0 and finite, Q entries, or none) and the fault options.
+template <typename Scalar, int Arms, int Joints, int Edges>
+void ControllerModel<Scalar, Arms, Joints, Edges>::validate_faults(const ControllerParameters<Scalar>& parameters) const
+{
+    const detail::ErrorContext model{detail::ErrorKind::model, "controller"};
+    const auto require_optional_limits = [&](const auto& limits, const char* name) {
+        if (limits.size() == 0) {
+            return;
+        }
+        if (limits.size() != joints_) {
+            detail::fail(model, name,
+                         "must be empty (no limit) or have one entry per joint (" + std::to_string(joints_) +
+                             "), got " + std::to_string(limits.size()));
+        }
+        for (Index j = 0; j < joints_; ++j) {
+            const double value = detail::value_of(limits(j));
+            if (!std::isfinite(value) || !(value > 0.0)) {
+                detail::fail(model, name,
+                             "joint " + std::to_string(j) + ": must be positive and finite, got " + std::to_string(value));
+            }
+        }
+    };
+    require_optional_limits(parameters.torque_limits, "torque_limits");
+    require_optional_limits(parameters.torque_rate_limits, "torque_rate_limits");
+    const FaultOptions<Scalar>& faults = parameters.faults;
+    detail::require_positive(faults.tick_period, model, "faults.tick_period");
+    detail::require_non_negative(faults.prediction_limit, model, "faults.prediction_limit");
+    detail::require_positive(faults.slip_distance_threshold, model, "faults.slip_distance_threshold");
+    detail::require_positive(faults.slip_angle_threshold, model, "faults.slip_angle_threshold");
+    detail::require_positive(faults.slip_squeeze_factor, model, "faults.slip_squeeze_factor");
+    if (!(faults.slip_squeeze_factor >= Scalar(1))) {
+        detail::fail(model, "faults.slip_squeeze_factor",
+                     "must be at least 1 (1: off), got " + std::to_string(detail::value_of(faults.slip_squeeze_factor)));
+    }
 }
 
 /// The contact-frame friction rows of every contact, stacked once: per tick they are only rotated
@@ -340,64 +424,7 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::build_rows()
     }
 }
 
-/// \brief What the user's kinematics/dynamics library and state estimate give the controller each
-/// tick (docs/control.md, "Inputs and sign conventions"). Sized by the model; fill in place.
-template <typename ScalarType, int ArmsAtCompileTime = Eigen::Dynamic, int JointsAtCompileTime = Eigen::Dynamic>
-struct ControllerInput {
-    using Scalar = ScalarType;
-    static constexpr int Arms = ArmsAtCompileTime;
-    static constexpr int Joints = JointsAtCompileTime;
-    using JointVector = Eigen::Matrix<Scalar, Joints, 1>;
-
-    ControllerInput(Index arms, Index joints)
-        : inertia(Eigen::Matrix<Scalar, Joints, Joints>::Identity(joints, joints)),
-          bias(JointVector::Zero(joints)),
-          jacobian(Eigen::Matrix<Scalar, times_six(Arms), Joints>::Zero(6 * arms, joints)),
-          jacobian_rate_qdot(Eigen::Matrix<Scalar, times_six(Arms), 1>::Zero(6 * arms)),
-          positions(JointVector::Zero(joints)),
-          velocities(JointVector::Zero(joints)),
-          posture(JointVector::Zero(joints))
-    {
-    }
-    template <int Edges>
-    explicit ControllerInput(const ControllerModel<Scalar, Arms, Joints, Edges>& model)
-        : ControllerInput(model.arms(), model.joints())
-    {
-    }
-    /// The same input with other compile-time sizes (e.g. a Dynamic input into a fixed-size one;
-    /// the run-time sizes must agree). Allocates for dynamic sizes: not for the tick.
-    template <int OtherArms, int OtherJoints,
-              std::enable_if_t<OtherArms != Arms || OtherJoints != Joints, int> = 0>
-    explicit ControllerInput(const ControllerInput<Scalar, OtherArms, OtherJoints>& other)
-        : inertia(other.inertia),
-          bias(other.bias),
-          jacobian(other.jacobian),
-          jacobian_rate_qdot(other.jacobian_rate_qdot),
-          positions(other.positions),
-          velocities(other.velocities),
-          object(other.object),
-          object_acceleration(other.object_acceleration),
-          desired_pose(other.desired_pose),
-          desired_twist(other.desired_twist),
-          desired_acceleration(other.desired_acceleration),
-          posture(other.posture)
-    {
-    }
-
-    Eigen::Matrix<Scalar, Joints, Joints> inertia;                 ///< M(q), Q x Q, SPD
-    JointVector bias;                                              ///< h(q, qdot): Coriolis, centrifugal, gravity
-    Eigen::Matrix<Scalar, times_six(Arms), Joints> jacobian;       ///< J, 6K x Q, contact points' twists [v; w] in {w}
-    Eigen::Matrix<Scalar, times_six(Arms), 1> jacobian_rate_qdot;  ///< Jdot qdot, 6K
-    JointVector positions;                                         ///< q (for the posture term)
-    JointVector velocities;                                        ///< qdot
-    RigidBodyState<Scalar> object{};                               ///< measured pose and twist of the object's centre, {w}
-    /// Measured (on a robot: filtered) acceleration [a; alpha] of the object's centre, {w}, for the
-    /// external-wrench estimate L(7).
-    Vector6<Scalar> object_acceleration = Vector6<Scalar>::Zero();
-    Pose<Scalar> desired_pose{};                                   ///< x_d
-    Vector6<Scalar> desired_twist = Vector6<Scalar>::Zero();       ///< xdot_d
-    Vector6<Scalar> desired_acceleration = Vector6<Scalar>::Zero();  ///< xdd_d
-    JointVector posture;                                           ///< q_n, the posture the self-motion is pulled to
-};
-
 }  // namespace coopdyn
+
+// ControllerInput, the per-tick input, sized by the model (after the model: its constructor takes one).
+#include "coopdyn/control/controller_input.hpp"

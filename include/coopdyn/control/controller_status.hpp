@@ -12,7 +12,7 @@
 namespace coopdyn {
 
 /// \brief Outcome of a controller tick (ControllerData::status). Whatever the status, the torques
-/// are finite.
+/// are finite; which torque each status sends: docs/control.md, "Every status's torque".
 enum class ControlStatus {
     /// Every step succeeded; the predicted contact wrenches satisfy every friction row.
     ok,
@@ -24,12 +24,26 @@ enum class ControlStatus {
     /// fallback's squeeze is applied (or none if that failed too). Rare; see qp_status.
     qp_failed,
     /// The arms are at a singular configuration (J lost rank, or the object cannot be moved in
-    /// some direction): no torques can be computed; the torque is h (the arms' bias compensated,
-    /// no squeeze). ControllerData::dynamics.status says which projection failed.
+    /// some direction): no control can be computed; the torque is h + J^T w_hold (this tick's h
+    /// and J, the contact wrenches of the last tick that computed the control: the last squeeze
+    /// kept), or h before any such tick. ControllerData::dynamics.status says which projection
+    /// failed.
     singular,
     /// An input is not finite, a quaternion is not unit, or M is not positive definite
-    /// (ControllerData::input_problem names it): the torque is zero.
+    /// (ControllerData::input_problem names it) and no tick has computed the control yet, so there
+    /// is nothing to hold: the torque is zero. After such a tick the same inputs give safe_hold.
     invalid_input,
+    /// The object's measurement was missing (not finite) or flagged stale and a predicted state
+    /// replaced it (ControllerData::replaced_input says which, input_problem what was wrong): the
+    /// control ran on the prediction, the torque is computed as for ok. Friction_infeasible and
+    /// qp_failed take precedence; replaced_input still says a prediction was used.
+    degraded,
+    /// The object's state has been predicted longer than FaultOptions::prediction_limit, or an
+    /// input other than the object's measurement is unusable (input_problem names it) after a tick
+    /// that computed the control: the torque is ControllerData::hold_torque, h + J^T w of the last
+    /// tick that computed the control (its arms' bias and its predicted contact wrenches: the same
+    /// squeeze, the object's last estimated load balanced, no motion). Never zero while held.
+    safe_hold,
 };
 
 /// The enumerator's name.
@@ -41,17 +55,49 @@ inline const char* to_string(ControlStatus status) noexcept
     case ControlStatus::qp_failed: return "qp_failed";
     case ControlStatus::singular: return "singular";
     case ControlStatus::invalid_input: return "invalid_input";
+    case ControlStatus::degraded: return "degraded";
+    case ControlStatus::safe_hold: return "safe_hold";
     }
     return "unknown";
 }
 
 /// Whether a tick with this status computed the control: every output of ControllerData is this
-/// tick's (ok, friction_infeasible, qp_failed). For invalid_input and singular the tick computed
-/// only `torque`; every other output is reset (docs/control.md, "After a failed tick").
+/// tick's (ok, degraded, friction_infeasible, qp_failed). For invalid_input, singular and
+/// safe_hold the tick computed only `torque`; every other output is reset (docs/control.md,
+/// "After a failed tick").
 inline bool control_computed(ControlStatus status) noexcept
 {
-    return status == ControlStatus::ok || status == ControlStatus::friction_infeasible ||
-           status == ControlStatus::qp_failed;
+    return status == ControlStatus::ok || status == ControlStatus::degraded ||
+           status == ControlStatus::friction_infeasible || status == ControlStatus::qp_failed;
+}
+
+/// \brief What replaced the object's measurement in a tick (ControllerData::replaced_input);
+/// docs/control.md, "Faults: dropout, safe hold, slip, torque limits".
+enum class ReplacedInput {
+    /// The measurement was used as given.
+    none,
+    /// Only object_acceleration was not finite: the last valid one replaced it, the measured pose
+    /// and twist were used.
+    object_acceleration,
+    /// The object's pose from the contacts' poses (ControllerInput::contact_poses_filled) composed
+    /// with the contact-to-object offsets recorded at the last valid measurement; its twist
+    /// Jx qdot; its acceleration the last valid one.
+    object_state_from_contacts,
+    /// The last valid measurement propagated with its twist held constant: p = p_0 + v t,
+    /// q = exp(omega t) q_0; its acceleration the last valid one.
+    object_state_from_twist,
+};
+
+/// The enumerator's name.
+inline const char* to_string(ReplacedInput replaced) noexcept
+{
+    switch (replaced) {
+    case ReplacedInput::none: return "none";
+    case ReplacedInput::object_acceleration: return "object_acceleration";
+    case ReplacedInput::object_state_from_contacts: return "object_state_from_contacts";
+    case ReplacedInput::object_state_from_twist: return "object_state_from_twist";
+    }
+    return "unknown";
 }
 
 /// \brief The input a tick refused (ControllerData::input_problem): the first one found, in this
@@ -75,6 +121,8 @@ enum class ControllerInputProblem {
     posture_not_finite,
     /// M is finite but its Cholesky factorisation failed (not symmetric positive definite).
     inertia_not_positive_definite,
+    /// ControllerInput::object_stale was set: the object's measurement is old.
+    object_stale,
 };
 
 /// The refused input by its ControllerInput name and what is wrong with it, e.g.
@@ -99,15 +147,17 @@ inline const char* to_string(ControllerInputProblem problem) noexcept
     case ControllerInputProblem::desired_acceleration_not_finite: return "desired_acceleration (not finite)";
     case ControllerInputProblem::posture_not_finite: return "posture (not finite)";
     case ControllerInputProblem::inertia_not_positive_definite: return "inertia (not positive definite)";
+    case ControllerInputProblem::object_stale: return "object (flagged stale)";
     }
     return "unknown";
 }
 
 namespace detail {
 
-/// The first per-tick input that is not finite (or a quaternion that is not unit); none.
+/// The first per-tick input, other than the object's measurement, that is not finite (or a
+/// quaternion that is not unit); none. A failure here leaves nothing to control with: safe hold.
 template <typename Scalar, int Arms, int Joints>
-ControllerInputProblem controller_input_problem(const ControllerInput<Scalar, Arms, Joints>& input) noexcept
+ControllerInputProblem arm_input_problem(const ControllerInput<Scalar, Arms, Joints>& input) noexcept
 {
     using Problem = ControllerInputProblem;
     if (!all_finite(input.inertia)) return Problem::inertia_not_finite;
@@ -116,15 +166,25 @@ ControllerInputProblem controller_input_problem(const ControllerInput<Scalar, Ar
     if (!all_finite(input.jacobian_rate_qdot)) return Problem::jacobian_rate_qdot_not_finite;
     if (!all_finite(input.positions)) return Problem::positions_not_finite;
     if (!all_finite(input.velocities)) return Problem::velocities_not_finite;
-    if (!all_finite(input.object.pose.position)) return Problem::object_position_not_finite;
-    if (!is_unit_quaternion(input.object.pose.orientation.coeffs())) return Problem::object_orientation_not_unit;
-    if (!all_finite(input.object.twist)) return Problem::object_twist_not_finite;
-    if (!all_finite(input.object_acceleration)) return Problem::object_acceleration_not_finite;
     if (!all_finite(input.desired_pose.position)) return Problem::desired_position_not_finite;
     if (!is_unit_quaternion(input.desired_pose.orientation.coeffs())) return Problem::desired_orientation_not_unit;
     if (!all_finite(input.desired_twist)) return Problem::desired_twist_not_finite;
     if (!all_finite(input.desired_acceleration)) return Problem::desired_acceleration_not_finite;
     if (!all_finite(input.posture)) return Problem::posture_not_finite;
+    return Problem::none;
+}
+
+/// What is wrong with the object's measurement (the stale flag first, then the pose, the twist,
+/// the acceleration); none. A failure here is replaced by a prediction (ControlStatus::degraded).
+template <typename Scalar, int Arms, int Joints>
+ControllerInputProblem object_measurement_problem(const ControllerInput<Scalar, Arms, Joints>& input) noexcept
+{
+    using Problem = ControllerInputProblem;
+    if (input.object_stale) return Problem::object_stale;
+    if (!all_finite(input.object.pose.position)) return Problem::object_position_not_finite;
+    if (!is_unit_quaternion(input.object.pose.orientation.coeffs())) return Problem::object_orientation_not_unit;
+    if (!all_finite(input.object.twist)) return Problem::object_twist_not_finite;
+    if (!all_finite(input.object_acceleration)) return Problem::object_acceleration_not_finite;
     return Problem::none;
 }
 

@@ -24,4 +24,17 @@ Pose<Scalar> contact_frame_in_object(const Pose<Scalar>& object, const Pose<Scal
     return relative;
 }
 
+/// \brief The object's pose from a contact frame's pose in {w} and that frame in the object (as
+/// contact_frame_in_object returns it): the inverse of contact_frame_in_object, q_o = q_c q_rel^-1,
+/// p_o = p_c - R_o p_rel. While the grasp is rigid, each contact predicts the object's pose this
+/// way (the controller's dropout prediction and slip, docs/control.md, "Faults").
+template <typename Scalar>
+Pose<Scalar> object_pose_from_contact(const Pose<Scalar>& contact, const Pose<Scalar>& contact_in_object) noexcept
+{
+    Pose<Scalar> object;
+    object.orientation = (contact.orientation * contact_in_object.orientation.conjugate()).normalized();
+    object.position = contact.position - object.orientation * contact_in_object.position;
+    return object;
+}
+
 }  // namespace coopdyn
