@@ -17,6 +17,8 @@ FIELDS = {
     _c.ContactPoint: ("frame", "friction"),
     _c.SqueezeObjective: ("internal_weight", "moment_weight", "torque_weight", "squeeze_weight"),
     _c.ContactQpOptions: ("warm_start", "iteration_limit", "fallback_weight"),
+    _c.FaultOptions: ("tick_period", "prediction_limit", "slip_distance_threshold", "slip_angle_threshold",
+                      "slip_squeeze_factor"),
     _c.RigidObject: ("mass", "inertia_body"),
     _c.ImpedanceEndEffector: ("mass", "rotational_inertia", "translational_damping", "rotational_damping",
                               "translational_stiffness", "rotational_stiffness"),
@@ -24,7 +26,7 @@ FIELDS = {
     _c.ResolvedAccelerationEndEffector: ("apparent_inertia", "derivative_gain", "proportional_gain"),
     _c.ResolvedAccelerationArm: ("end_effector", "grasp_body"),
     _c.ControllerParameters: ("joints", "contacts", "stiffness", "damping", "posture_stiffness",
-                              "posture_damping", "objective", "qp"),
+                              "posture_damping", "objective", "qp", "torque_limits", "torque_rate_limits", "faults"),
 }
 
 

@@ -21,6 +21,7 @@ using Contact = ContactPoint<double>;
 using Parameters = ControllerParameters<double>;
 using Objective = SqueezeObjective<double>;
 using QpOptions = ContactQpOptions<double>;
+using Faults = FaultOptions<double>;
 using ModelX = ControllerModel<double, X, X, X>;
 using DataX = ControllerData<double, X, X, X>;
 using InputX = ControllerInput<double, X, X>;
@@ -103,6 +104,18 @@ void bind_parameters(py::module_& module)
         .def_readwrite("iteration_limit", &QpOptions::iteration_limit, "0: the solver's default")
         .def_readwrite("fallback_weight", &QpOptions::fallback_weight, "> 0");
 
+    py::class_<Faults>(module, "FaultOptions",
+                       "What the controller does when an input fails or the grasp slips (docs/control.md, "
+                       "\"Faults: dropout, safe hold, slip, torque limits\"). Times in s, distances in m, angles in rad.")
+        .def(py::init<>())
+        .def_readwrite("tick_period", &Faults::tick_period, "the tick's period (s) > 0: how far a prediction is propagated")
+        .def_readwrite("prediction_limit", &Faults::prediction_limit,
+                       "how long (s) >= 0 the object's state may be predicted (degraded) before the safe hold")
+        .def_readwrite("slip_distance_threshold", &Faults::slip_distance_threshold, "m > 0: a contact slips beyond it")
+        .def_readwrite("slip_angle_threshold", &Faults::slip_angle_threshold, "rad > 0: or beyond this angle")
+        .def_readwrite("slip_squeeze_factor", &Faults::slip_squeeze_factor,
+                       ">= 1: f_min is multiplied by it while a contact slips (1: off)");
+
     py::class_<Parameters> parameters(module, "ControllerParameters",
                                       "Everything a ControllerModel is built from (plain data, validated by "
                                       "ControllerModel; docs/control.md, \"The controller\").");
@@ -126,7 +139,8 @@ void bind_parameters(py::module_& module)
             },
             "list of ContactPoint, K >= 2, in the order of J's row blocks (a copy: assign the whole list)")
         .def_readwrite("objective", &Parameters::objective, "SqueezeObjective")
-        .def_readwrite("qp", &Parameters::qp, "ContactQpOptions");
+        .def_readwrite("qp", &Parameters::qp, "ContactQpOptions")
+        .def_readwrite("faults", &Parameters::faults, "FaultOptions");
     def_array(parameters, "ControllerParameters", "stiffness", &Parameters::stiffness, "(6, 6)",
               "K_d (6, 6), symmetric >= 0 [N/m, N m/rad], L(16)");
     def_array(parameters, "ControllerParameters", "damping", &Parameters::damping, "(6, 6)",
@@ -135,6 +149,10 @@ void bind_parameters(py::module_& module)
               "K_n (Q,) >= 0, the posture gains (E12)", true);
     def_array(parameters, "ControllerParameters", "posture_damping", &Parameters::posture_damping, "(Q,)",
               "D_n (Q,) >= 0 (E12)", true);
+    def_array(parameters, "ControllerParameters", "torque_limits", &Parameters::torque_limits, "(Q,) or (0,)",
+              "|tau_j| <= limit_j (Q,) > 0 applied after the QP, saturation reported; empty: none", true);
+    def_array(parameters, "ControllerParameters", "torque_rate_limits", &Parameters::torque_rate_limits,
+              "(Q,) or (0,)", "|tau_j - tau_j,previous| <= limit_j (Q,) > 0 per tick; empty: none", true);
 }
 
 void bind_projection(py::module_& module)
@@ -147,7 +165,7 @@ void bind_projection(py::module_& module)
     py::class_<Projection> projection(module, "ProjectedDynamics",
                                       "Projected inverse dynamics L(4), (13), (15), (26) at one configuration "
                                       "(docs/control.md). Every field is a read-only copy.");
-    projection.def_readonly("status", &Projection::status);
+    projection.def_property_readonly("status", [](const Projection& self) { return self.status; }, "ProjectionStatus (a copy)");
     def_output(projection, "contact_offsets", &Projection::contact_offsets, "r (3, K), {w}");
     def_output(projection, "grasp", &Projection::grasp, "G (6, 6K), (24)");
     def_output(projection, "object_jacobian", &Projection::object_jacobian, "Jx (6, Q)");
@@ -302,6 +320,18 @@ void check_sizes(const ModelX& model, const DataX& data, const InputX& input)
     }
 }
 
+/// A read-only numpy bool array copying an Eigen bool array (slipping, saturated_joints).
+template <typename Derived> py::array bool_copy(const Eigen::ArrayBase<Derived>& flags)
+{
+    py::array_t<bool> result(flags.size());
+    auto view = result.mutable_unchecked<1>();
+    for (Index i = 0; i < flags.size(); ++i) {
+        view(i) = flags(i);
+    }
+    result.attr("flags").attr("writeable") = false;
+    return std::move(result);
+}
+
 void bind_controller_types(py::module_& module)
 {
     py::enum_<ControlStatus>(module, "ControlStatus", "Outcome of a controller tick (docs/control.md).")
@@ -309,10 +339,17 @@ void bind_controller_types(py::module_& module)
         .value("friction_infeasible", ControlStatus::friction_infeasible)
         .value("qp_failed", ControlStatus::qp_failed)
         .value("singular", ControlStatus::singular)
-        .value("invalid_input", ControlStatus::invalid_input);
+        .value("invalid_input", ControlStatus::invalid_input)
+        .value("degraded", ControlStatus::degraded, "the object's measurement was replaced by a prediction")
+        .value("safe_hold", ControlStatus::safe_hold, "h + J^T w of the last computed tick (docs/control.md)");
+    py::enum_<ReplacedInput>(module, "ReplacedInput", "What replaced the object's measurement (ControllerData.replaced_input).")
+        .value("none", ReplacedInput::none)
+        .value("object_acceleration", ReplacedInput::object_acceleration)
+        .value("object_state_from_contacts", ReplacedInput::object_state_from_contacts)
+        .value("object_state_from_twist", ReplacedInput::object_state_from_twist);
     py::enum_<ControllerInputProblem> problem(module, "ControllerInputProblem",
                                               "The input a tick refused (ControllerData.input_problem).");
-    for (int k = 0; k <= static_cast<int>(ControllerInputProblem::inertia_not_positive_definite); ++k) {
+    for (int k = 0; k <= static_cast<int>(ControllerInputProblem::object_stale); ++k) {
         const auto value = static_cast<ControllerInputProblem>(k);
         // the enumerators' C++ names (to_string gives the input's name and the problem)
         static const char* const names[] = {
@@ -320,7 +357,9 @@ void bind_controller_types(py::module_& module)
             "positions_not_finite", "velocities_not_finite", "object_position_not_finite", "object_orientation_not_unit",
             "object_twist_not_finite", "object_acceleration_not_finite", "desired_position_not_finite",
             "desired_orientation_not_unit", "desired_twist_not_finite", "desired_acceleration_not_finite",
-            "posture_not_finite", "inertia_not_positive_definite"};
+            "posture_not_finite", "inertia_not_positive_definite", "object_stale"};
+        static_assert(sizeof(names) / sizeof(names[0]) == static_cast<std::size_t>(ControllerInputProblem::object_stale) + 1,
+                      "one name per enumerator");
         problem.value(names[k], value, to_string(value));
     }
 
@@ -343,6 +382,14 @@ void bind_controller_types(py::module_& module)
         .def_property_readonly("objective", &ModelX::objective, py::return_value_policy::copy,
                                "a copy: a model is constant once validated")
         .def_property_readonly("qp_options", &ModelX::qp_options, py::return_value_policy::copy, "a copy")
+        .def_property_readonly("faults", &ModelX::faults, py::return_value_policy::copy, "a copy")
+        .def_property_readonly("has_torque_limits", &ModelX::has_torque_limits)
+        .def_property_readonly("has_torque_rate_limits", &ModelX::has_torque_rate_limits)
+        .def_property_readonly("torque_limits", [](const ModelX& self) { return vector_copy(self.torque_limits(), true); },
+                               "(Q,), zero when none")
+        .def_property_readonly("torque_rate_limits",
+                               [](const ModelX& self) { return vector_copy(self.torque_rate_limits(), true); },
+                               "(Q,), zero when none")
         .def_property_readonly("stiffness", [](const ModelX& self) { return matrix_copy(self.stiffness(), true); })
         .def_property_readonly("damping", [](const ModelX& self) { return matrix_copy(self.damping(), true); })
         .def_property_readonly("posture_stiffness",
@@ -377,21 +424,31 @@ void bind_controller_types(py::module_& module)
     def_array(input, "ControllerInput", "desired_twist", &InputX::desired_twist, "(6,)", "xdot_d (6,)");
     def_array(input, "ControllerInput", "desired_acceleration", &InputX::desired_acceleration, "(6,)", "xdd_d (6,)");
     def_array(input, "ControllerInput", "posture", &InputX::posture, "(Q,)", "q_n (Q,), the posture (E12)");
+    input.def_readwrite("object_stale", &InputX::object_stale,
+                        "the caller's flag that object and object_acceleration are an old measurement")
+        .def_readwrite("contact_poses_filled", &InputX::contact_poses_filled,
+                       "contact_positions / contact_orientations hold this tick's contact frames");
+    def_array(input, "ControllerInput", "contact_positions", &InputX::contact_positions, "(3, K)",
+              "column i: contact frame i's origin in {w} (m)");
+    def_array(input, "ControllerInput", "contact_orientations", &InputX::contact_orientations, "(4, K)",
+              "column i: contact frame i's orientation in {w}, unit quaternion (x, y, z, w)");
 
+    // The enumerations are returned as copies: pybind11's def_readonly would hand out a reference
+    // into the data, which the next tick overwrites (a list of statuses would read the last one).
     py::class_<DataX> data(module, "ControllerData",
                            "Everything a controller tick computes, sized once from the model. Every array field is a "
                            "read-only copy made when read (docs/python.md, \"Arrays\").");
     data.def(py::init([](const ModelX& m) { return DataX(m); }), py::arg("model"))
         .def_property_readonly("arms", &DataX::arms)
         .def_property_readonly("joints", &DataX::joints)
-        .def_readonly("status", &DataX::status, "ControlStatus")
-        .def_readonly("input_problem", &DataX::input_problem, "ControllerInputProblem")
+        .def_property_readonly("status", [](const DataX& self) { return self.status; }, "ControlStatus (a copy)")
+        .def_property_readonly("input_problem", [](const DataX& self) { return self.input_problem; }, "ControllerInputProblem (a copy)")
         .def_readonly("tightest_force_margin", &DataX::tightest_force_margin, "N")
         .def_readonly("tightest_moment_margin", &DataX::tightest_moment_margin, "N m")
         .def_readonly("tightest_margin", &DataX::tightest_margin)
         .def_readonly("tightest_contact", &DataX::tightest_contact)
         .def_readonly("qp_ran", &DataX::qp_ran)
-        .def_readonly("qp_status", &DataX::qp_status, "QpStatus")
+        .def_property_readonly("qp_status", [](const DataX& self) { return self.qp_status; }, "QpStatus (a copy)")
         .def_readonly("qp_iterations", &DataX::qp_iterations)
         .def_readonly("fallback_used", &DataX::fallback_used)
         .def_readonly("fallback_violation", &DataX::fallback_violation)
@@ -418,6 +475,25 @@ void bind_controller_types(py::module_& module)
     def_output(data, "squeeze", &DataX::squeeze, "z* (6K - 6,)");
     def_output(data, "joint_acceleration", &DataX::joint_acceleration, "qdd (Q,)");
     def_output(data, "contact_rotations", &DataX::contact_rotations, "[R_c1 ... R_cK] (3, 3K)");
+    // Faults (docs/control.md, "Faults: dropout, safe hold, slip, torque limits").
+    data.def_property_readonly("replaced_input", [](const DataX& self) { return self.replaced_input; }, "ReplacedInput (a copy)")
+        .def_property_readonly("object", [](const DataX& self) { return self.object; },
+                               "RigidBodyState the tick used (the measurement or the prediction; a copy)")
+        .def_readonly("prediction_age", &DataX::prediction_age, "s since the last valid object measurement")
+        .def_readonly("hold_ready", &DataX::hold_ready, "some tick computed the control (there is a grasp to hold)")
+        .def_readonly("slip_measured", &DataX::slip_measured)
+        .def_readonly("slipping_contacts", &DataX::slipping_contacts)
+        .def_readonly("saturated_count", &DataX::saturated_count)
+        .def_property_readonly("slipping", [](const DataX& self) { return bool_copy(self.slipping); }, "(K,) bool")
+        .def_property_readonly("saturated_joints", [](const DataX& self) { return bool_copy(self.saturated_joints); },
+                               "(Q,) bool");
+    def_output(data, "object_acceleration", &DataX::object_acceleration, "[a; alpha] the tick used (6,)");
+    def_output(data, "hold_torque", &DataX::hold_torque, "h + J^T w of the last computed tick (Q,): the safe hold's");
+    def_output(data, "hold_wrenches", &DataX::hold_wrenches, "that tick's w (6K,)");
+    def_output(data, "slip_displacement", &DataX::slip_displacement, "(3, K) m, {w}");
+    def_output(data, "slip_distance", &DataX::slip_distance, "(K,) m");
+    def_output(data, "slip_angle", &DataX::slip_angle, "(K,) rad");
+    def_output(data, "requested_torque", &DataX::requested_torque, "the torque before the limits (Q,)");
 
     module.def(
         "controller_tick",

@@ -194,12 +194,23 @@ def test_invalid_parameters_and_inputs():
         coopdyn.ControllerData(model).torque[0] = 1.0
     # A non-finite input is a status, not an exception (the per-tick path never throws).
     data = coopdyn.ControllerData(model)
+    # Before any computed tick nothing is held: a bad arm input is refused with zero torque
+    # (docs/control.md, "Faults"); a bad object acceleration is replaced by the last valid one.
+    bad = box_input(model)
+    bias = bad.bias.copy()  # the getter returns a read-only copy
+    bias[3] = np.nan
+    bad.bias = bias
+    tau = coopdyn.controller_tick(model, data, bad)
+    assert data.status == coopdyn.ControlStatus.invalid_input
+    assert data.input_problem == coopdyn.ControllerInputProblem.bias_not_finite
+    np.testing.assert_array_equal(tau, 0)
     bad = box_input(model)
     bad.object_acceleration = [np.nan, 0, 0, 0, 0, 0]
     tau = coopdyn.controller_tick(model, data, bad)
-    assert data.status == coopdyn.ControlStatus.invalid_input
+    assert data.status == coopdyn.ControlStatus.degraded
     assert data.input_problem == coopdyn.ControllerInputProblem.object_acceleration_not_finite
-    np.testing.assert_array_equal(tau, 0)
+    assert data.replaced_input == coopdyn.ReplacedInput.object_acceleration
+    assert np.all(np.isfinite(tau))
     # Data or input of another model.
     parameters = two_palms()
     parameters.joints = 13

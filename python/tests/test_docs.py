@@ -37,6 +37,8 @@ def test_docs_python_examples_run():
     assert namespace["log"]["wrenches"].shape == (500, 18)
     # The exceptions example raised and printed the fields as its comment says.
     assert "contact friction_coefficient 1 must be positive and finite, got -1" in printed.getvalue()
+    # The faults example: a dropout after a measured tick is predicted from the twist.
+    assert "ControlStatus.degraded ReplacedInput.object_state_from_twist" in printed.getvalue()
 
 
 def test_docs_contact_frames_match_the_readme_matrices():
