@@ -21,6 +21,22 @@ def grasp_by_hand(r):
     return np.hstack([grasp_block(r[:, i]) for i in range(r.shape[1])])
 
 
+def constraint_by_hand(r, omega):
+    """A and b of the grasp constraint A xdd = b, (11)-(12) (docs/model.md, "Rigid grasp kinematics"): per arm i,
+    -a_o + S(r_i) alpha_o + a_i = w x (w x r_i) and -alpha_o + alpha_i = 0, over the stacked
+    accelerations [object; arm 1; ...; arm N]."""
+    n = r.shape[1]
+    A = np.zeros((6 * n, 6 * (n + 1)))
+    b = np.zeros(6 * n)
+    for i in range(n):
+        A[6 * i:6 * i + 3, 0:3] = -np.eye(3)
+        A[6 * i:6 * i + 3, 3:6] = skew(r[:, i])
+        A[6 * i + 3:6 * i + 6, 3:6] = -np.eye(3)
+        A[6 * i:6 * i + 6, 6 * (i + 1):6 * (i + 2)] = np.eye(6)
+        b[6 * i:6 * i + 3] = np.cross(omega, np.cross(omega, r[:, i]))
+    return A, b
+
+
 def random_spd(rng, n, scale=1.0):
     a = rng.standard_normal((n, n))
     return scale * (a @ a.T + n * np.eye(n))

@@ -274,19 +274,16 @@ def test_docstrings_cite_the_equations():
     assert "L(13)" in coopdyn.constraint_jacobian.__doc__
 
 
-def test_a_python_loop_at_1khz_keeps_up_and_keeps_the_physics():
+def test_a_python_loop_at_1khz_keeps_the_physics():
     """1000 ticks (1 s at 1 kHz) written in Python, the box displaced along a circle and pushed so
     that the estimate F_x changes every tick: every tick is ok, balances the massless object
-    (G w = -F_x) and keeps every friction margin >= 0, and the whole second takes well under a
-    second of wall time."""
-    import time
-
+    (G w = -F_x) and keeps every friction margin >= 0. (Its speed is measured by
+    python/benchmarks/overhead.py, not asserted here: a loaded machine would fail a timed test.)"""
     model = coopdyn.ControllerModel(two_palms(mu=0.5))
     data = coopdyn.ControllerData(model)
     inp = box_input(model)
     base = np.array(inp.object.pose.position)
     worst_balance, worst_margin = 0.0, np.inf
-    start = time.perf_counter()
     for k in range(1000):
         t = k * 1e-3
         inp.object.pose.position = base + 0.01 * np.array([np.cos(2 * np.pi * t), np.sin(2 * np.pi * t), 0.0])
@@ -296,7 +293,5 @@ def test_a_python_loop_at_1khz_keeps_up_and_keeps_the_physics():
         balance = grasp_by_hand(data.dynamics.contact_offsets) @ data.contact_wrenches + data.external_wrench
         worst_balance = max(worst_balance, np.abs(balance).max())
         worst_margin = min(worst_margin, data.tightest_margin)
-    elapsed = time.perf_counter() - start
     assert worst_balance < 1e-9
     assert worst_margin > -1e-9
-    assert elapsed < 1.0, f"1000 ticks took {elapsed:.3f} s"

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import coopdyn
-from conftest import block_diag, grasp_block, grasp_by_hand, random_spd, skew
+from conftest import block_diag, constraint_by_hand, grasp_block, grasp_by_hand, random_spd, skew
 
 
 def layouts(a):
@@ -55,14 +55,7 @@ def test_wrong_shapes_name_the_argument_and_the_shape(rng):
 def test_constraint_matrix_and_bias_by_hand(rng):
     r = rng.standard_normal((3, 3))
     omega = rng.standard_normal(3)
-    A = np.zeros((18, 24))
-    b = np.zeros(18)
-    for i in range(3):
-        A[6 * i:6 * i + 3, 0:3] = -np.eye(3)
-        A[6 * i:6 * i + 3, 3:6] = skew(r[:, i])
-        A[6 * i + 3:6 * i + 6, 3:6] = -np.eye(3)
-        A[6 * i:6 * i + 6, 6 * (i + 1):6 * (i + 2)] = np.eye(6)
-        b[6 * i:6 * i + 3] = np.cross(omega, np.cross(omega, r[:, i]))
+    A, b = constraint_by_hand(r, omega)
     np.testing.assert_array_equal(coopdyn.constraint_matrix(r), A)
     np.testing.assert_allclose(coopdyn.constraint_bias(r, omega), b, rtol=1e-14, atol=1e-14)
 
@@ -97,14 +90,7 @@ def test_interaction_wrenches_against_udwadia_kalaba_in_numpy(rng):
         object_inertia = random_spd(rng, 6)
         ee = [random_spd(rng, 6, 2.0) for _ in range(n)]
         h_sigma = rng.standard_normal(6 * (n + 1))
-        A = np.zeros((6 * n, 6 * (n + 1)))
-        b = np.zeros(6 * n)
-        for i in range(n):
-            A[6 * i:6 * i + 3, 0:3] = -np.eye(3)
-            A[6 * i:6 * i + 3, 3:6] = skew(r[:, i])
-            A[6 * i + 3:6 * i + 6, 3:6] = -np.eye(3)
-            A[6 * i:6 * i + 6, 6 * (i + 1):6 * (i + 2)] = np.eye(6)
-            b[6 * i:6 * i + 3] = np.cross(omega, np.cross(omega, r[:, i]))
+        A, b = constraint_by_hand(r, omega)
         M = block_diag(object_inertia, *ee)
         reference = uk_reference(M, A, b, h_sigma)
         h = coopdyn.interaction_wrenches(object_inertia, np.hstack(ee), r, omega, h_sigma)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import coopdyn
-from conftest import block_diag, grasp_by_hand, skew
+from conftest import block_diag, constraint_by_hand, grasp_by_hand, skew
 
 
 def beam(stiffness=300.0, damping=180.0, gravity=None, inertia=(0.055, 0.0, 0.055)):
@@ -239,14 +239,7 @@ def test_resolved_acceleration_model_against_eq_18_in_numpy(rng):
         np.testing.assert_allclose(data.motion_wrenches[6 * i:6 * i + 6], expected, rtol=1e-12, atol=1e-12)
     r = data.grasp_offsets
     omega = state.twist[3:]
-    A = np.zeros((12, 18))
-    b = np.zeros(12)
-    for i in range(2):
-        A[6 * i:6 * i + 3, 0:3] = -np.eye(3)
-        A[6 * i:6 * i + 3, 3:6] = skew(r[:, i])
-        A[6 * i + 3:6 * i + 6, 3:6] = -np.eye(3)
-        A[6 * i:6 * i + 6, 6 * (i + 1):6 * (i + 2)] = np.eye(6)
-        b[6 * i:6 * i + 3] = np.cross(omega, np.cross(omega, r[:, i]))
+    A, b = constraint_by_hand(r, omega)
     M = block_diag(block_diag(1.75 * np.eye(3), np.diag([0.055, 0.01, 0.06])), *lambdas)
     L = np.linalg.cholesky(M)
     reference = L @ np.linalg.pinv(A @ np.linalg.inv(L).T) @ (b - A @ np.linalg.solve(M, data.h_sigma))
