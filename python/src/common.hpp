@@ -113,6 +113,7 @@ py::array quaternion_array(const Eigen::Quaterniond& q, bool read_only);
 void bind_errors(py::module_& module);
 void bind_numerics(py::module_& module);
 void bind_controller(py::module_& module);
+void bind_control_kernels(py::module_& module);  ///< called by bind_controller
 void bind_kernels(py::module_& module);
 void bind_spatial_model(py::module_& module);
 void bind_analysis(py::module_& module);

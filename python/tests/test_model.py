@@ -56,15 +56,7 @@ def test_interaction_dynamics_against_eq_18_in_numpy(rng):
     h = coopdyn.interaction_dynamics(model, data, state, setpoints, disturbances)
     r = data.grasp_offsets
     omega = state.twist[3:]
-    n = 2
-    A = np.zeros((6 * n, 6 * (n + 1)))
-    b = np.zeros(6 * n)
-    for i in range(n):
-        A[6 * i:6 * i + 3, 0:3] = -np.eye(3)
-        A[6 * i:6 * i + 3, 3:6] = skew(r[:, i])
-        A[6 * i + 3:6 * i + 6, 3:6] = -np.eye(3)
-        A[6 * i:6 * i + 6, 6 * (i + 1):6 * (i + 2)] = np.eye(6)
-        b[6 * i:6 * i + 3] = np.cross(omega, np.cross(omega, r[:, i]))
+    A, b = constraint_by_hand(r, omega)
     J_o = data.object_rotation @ np.diag([0.055, 0.01, 0.06]) @ data.object_rotation.T
     M_o = block_diag(1.75 * np.eye(3), J_o)
     M_ee = block_diag(10.0 * np.eye(3), 0.5 * np.eye(3))
