@@ -8,9 +8,8 @@ controller); the equation numbers in the docstrings are theirs (docs/conventions
 
 from ._coopdyn import *  # noqa: F401,F403
 from ._coopdyn import Error, InvalidArgument, InvalidModel  # noqa: F401
-from . import _parameters, _simulate
+from . import _parameters
 
 _parameters.install()
-_simulate.install()
 
 __version__ = "0.1.0"

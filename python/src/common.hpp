@@ -116,6 +116,8 @@ void bind_controller(py::module_& module);
 void bind_control_kernels(py::module_& module);  ///< called by bind_controller
 void bind_kernels(py::module_& module);
 void bind_spatial_model(py::module_& module);
+void bind_simulator(py::module_& module);      ///< after bind_spatial_model (its models)
+void bind_model_analysis(py::module_& module);  ///< after bind_kernels and bind_spatial_model
 void bind_analysis(py::module_& module);
 void bind_identification(py::module_& module);
 

@@ -188,6 +188,8 @@ PYBIND11_MODULE(_coopdyn, module)
     coopdyn::python::bind_controller(module);
     coopdyn::python::bind_kernels(module);
     coopdyn::python::bind_spatial_model(module);
+    coopdyn::python::bind_simulator(module);
+    coopdyn::python::bind_model_analysis(module);  // after kernels and models: ApparentImpedance, SynthesisResult
     coopdyn::python::bind_analysis(module);  // after kernels: ApparentImpedance is bound there
     coopdyn::python::bind_identification(module);
 }

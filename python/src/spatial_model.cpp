@@ -1,7 +1,6 @@
 // The first paper's cooperative model (Erhart & Hirche 2016; docs/model.md, docs/dynamics.md):
 // RigidObject, ImpedanceEndEffector, Arm, Model / Data with N chosen at run time, Setpoints,
-// Disturbances, interaction_dynamics, check_inputs, the energies and the Simulator driven by a
-// Python callable.
+// Disturbances, interaction_dynamics, check_inputs and the energies (the Simulator: simulator.cpp).
 #include "common.hpp"
 
 #include <coopdyn/core.hpp>
@@ -20,7 +19,6 @@ using Object = RigidObject<double>;
 using SetpointsX = Setpoints<double, Dynamic>;
 using DisturbancesX = Disturbances<double, Dynamic>;
 using State = RigidBodyState<double>;
-using SimulatorX = Simulator<ModelX>;
 
 void require_arms(Index arms, Index expected, const char* function, const char* name)
 {
@@ -288,62 +286,6 @@ void bind_impedance_energy(py::module_& module)
     }, py::arg("model"), py::arg("data"), py::arg("setpoints"), "the end-effectors' spring energy (39)");
 }
 
-void bind_simulator(py::module_& module)
-{
-    py::enum_<Integrator>(module, "Integrator")
-        .value("runge_kutta_4", Integrator::runge_kutta_4)
-        .value("semi_implicit_euler", Integrator::semi_implicit_euler);
-    py::enum_<InputHold>(module, "InputHold")
-        .value("per_stage", InputHold::per_stage)
-        .value("zero_order", InputHold::zero_order);
-    py::class_<SimulationStatus<double>>(module, "SimulationStatus")
-        .def_readonly("ok", &SimulationStatus<double>::ok)
-        .def_readonly("failed_step", &SimulationStatus<double>::failed_step)
-        .def_readonly("failed_time", &SimulationStatus<double>::failed_time)
-        .def_readonly("input", &SimulationStatus<double>::input);
-
-    py::class_<SimulatorX>(module, "Simulator",
-                           "Fixed-step simulation of the cooperative system (Fig. 2; docs/dynamics.md). Keeps the "
-                           "model alive. Inputs come from a Python callable inputs(time, state, setpoints, "
-                           "disturbances) that writes into setpoints and disturbances (the simulator's own buffers; "
-                           "state is the integrator stage's object state, for feedback).")
-        .def(py::init<const ModelX&, double, const State&, Integrator, InputHold>(), py::arg("model"),
-             py::arg("time_step"), py::arg("initial_state") = State(), py::arg("integrator") = Integrator::runge_kutta_4,
-             py::arg("input_hold") = InputHold::per_stage, py::keep_alive<1, 2>())
-        .def(
-            "step",
-            [](py::object self, py::object inputs) {
-                SimulatorX& simulator = self.cast<SimulatorX&>();
-                if (inputs.is_none()) {
-                    py::gil_scoped_release unlocked;
-                    return simulator.step();
-                }
-                return simulator.step([&](double time, const State& state, SetpointsX& setpoints,
-                                          DisturbancesX& disturbances) {
-                    inputs(time, state, py::cast(&setpoints, py::return_value_policy::reference_internal, self),
-                           py::cast(&disturbances, py::return_value_policy::reference_internal, self));
-                });
-            },
-            py::arg("inputs") = py::none(),
-            "step(inputs=None) -> SimulationStatus: one step; inputs(time, state, setpoints, disturbances) is called at "
-            "every integrator stage (per_stage) or once (zero_order). An exception in it propagates (the step is not "
-            "taken). Without inputs the setpoints and disturbances keep their values and the GIL is released.")
-        .def("reset", &SimulatorX::reset, py::arg("state"), py::arg("time") = 0.0)
-        .def_property_readonly("state", &SimulatorX::state, py::return_value_policy::copy,
-                               "a copy of the object's state (change it with reset(state, time))")
-        .def_property_readonly("time", &SimulatorX::time)
-        .def_property_readonly("steps", &SimulatorX::steps)
-        .def_property_readonly("time_step", &SimulatorX::time_step)
-        .def_property_readonly("status", &SimulatorX::status, py::return_value_policy::copy)
-        .def_property_readonly("data", &SimulatorX::data, py::return_value_policy::reference_internal,
-                               "the evaluation at the state the last step started from (a view)")
-        .def_property_readonly("setpoints", py::cpp_function([](SimulatorX& self) -> SetpointsX& { return self.setpoints(); },
-                                                             py::return_value_policy::reference_internal))
-        .def_property_readonly("disturbances",
-                               py::cpp_function([](SimulatorX& self) -> DisturbancesX& { return self.disturbances(); },
-                                                py::return_value_policy::reference_internal));
-}
-
 }  // namespace
 
 void bind_spatial_model(py::module_& module)
@@ -356,7 +298,6 @@ void bind_spatial_model(py::module_& module)
                             "the parameter and the arm.");
     bind_impedance_energy(module);
     bind_resolved_acceleration(module);
-    bind_simulator(module);
 }
 
 }  // namespace coopdyn::python
