@@ -179,7 +179,7 @@ inline example_common::Plot write_scene_plot(const std::filesystem::path& folder
     example_common::write_text_file(folder / (stem + "_cells.dat"), table);
     example_common::write_text_file(folder / (stem + "_pushes.dat"), push_table);
     const std::string script =
-        "set terminal pngcairo size 1200,900\nset output '" + stem + ".png'\nset multiplot layout 2,1 title 'fault "
+        "set terminal pngcairo size 1200,900 noenhanced\nset output '" + stem + ".png'\nset multiplot layout 2,1 title 'fault "
         "campaign: " + scene + " (docs/faults.md)'\nset style data histograms\nset style fill solid 0.6\nset logscale y"
         "\nset yrange [0.001:*]\nset ylabel 'largest slip (mm)'\nset xtics rotate by -45 font ',8'\nplot '" + stem +
         "_cells.dat' using ($3+0.001):xtic(2) title 'MuJoCo', '' using ($4+0.001) title 'rigid (welded)'\n"
