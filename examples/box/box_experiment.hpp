@@ -212,7 +212,27 @@ void read_plant(const Plant& plant, const Terms& terms, double filter_gain, Vect
     input.object.twist = plant.box_twist();
     filtered_acceleration += filter_gain * (plant.box_acceleration() - filtered_acceleration);
     input.object_acceleration = filtered_acceleration;
+    // The contacts' poses from the arms' forward kinematics, as the library's adapters fill them
+    // (docs/control.md, "Faults"): the controller predicts the box from them during a dropout and
+    // measures each palm's slip. They change no torque while the box is measured.
+    for (std::size_t i = 0; i < terms.palm_position.size(); ++i) {
+        const auto column = static_cast<Eigen::Index>(i);
+        input.contact_positions.col(column) = terms.palm_position[i];
+        input.contact_orientations.col(column) = Eigen::Quaterniond(terms.palm_rotation[i]).coeffs();
+    }
+    input.contact_poses_filled = true;
 }
+
+/// The experiment's fault hook (the fault campaign, docs/faults.md): corrupt_input after the plant
+/// is read, corrupt_torque after the torque is saturated (noise on it, forces the model misses);
+/// both also see the tick. This one changes nothing and compiles to nothing.
+struct NoFaults {
+    template <typename Input> void corrupt_input(long, double, Input&) noexcept {}
+    template <typename Torque, typename Input, typename Data>
+    void corrupt_torque(long, double, Torque&, const Input&, const Data&) noexcept
+    {
+    }
+};
 
 /// Clamps tau to the joints' torque limits; returns max_j |tau_j| / limit_j.
 template <typename Torque, typename Limit> double saturate(Torque& tau, const Limit& limit) noexcept
@@ -261,17 +281,18 @@ void log_palms(const Plant& plant, const PalmFramesOf<K>& palms_seen, const Data
     }
 }
 
-/// The tick's log row (the palms' columns are log_palms'): the box against the desired motion,
-/// the controller's estimate, QP and torques, the person's wrench and the plant's box.
-template <int K, int Q, typename Plant, typename Input, typename Data>
-TickLogOf<K, Q> tick_log(const Plant& plant, const Input& input, const Desired& desired, const Data& data, double t,
-                         const Vector6d& disturbance, double torque_use)
+/// The tick's log row (the palms' columns are log_palms'): the box (as the plant measured it,
+/// before any fault) against the desired motion, the controller's estimate, QP and torques, the
+/// person's wrench and the plant's box.
+template <int K, int Q, typename Plant, typename Data>
+TickLogOf<K, Q> tick_log(const Plant& plant, const coopdyn::RigidBodyState<double>& box, const Desired& desired,
+                         const Data& data, double t, const Vector6d& disturbance, double torque_use)
 {
     TickLogOf<K, Q> row;
     row.time = t;
-    row.box_position = input.object.pose.position;
+    row.box_position = box.pose.position;
     row.desired_position = desired.pose.position;
-    row.orientation_error = coopdyn::quaternion_log(Eigen::Quaterniond(input.object.pose.orientation *
+    row.orientation_error = coopdyn::quaternion_log(Eigen::Quaterniond(box.pose.orientation *
                                                                        desired.pose.orientation.conjugate()))
                                 .norm();
     row.external_wrench = data.external_wrench;
@@ -311,9 +332,11 @@ template <typename Plant> void apply_added_mass(Plant& plant, const BoxScenario&
 /// palm_position[i], palm_rotation[i]); joint_positions(), joint_velocities(), box_position(),
 /// box_orientation(), box_twist(), box_acceleration(); end_tick(tau, wrench on the box's centre);
 /// measured_contact_wrench(i); box_mass(), set_box_mass(m).
-template <int K, int Q, typename Plant>
+/// `faults` (NoFaults by default; docs/faults.md) corrupts each tick's input and torque.
+template <int K, int Q, typename Plant, typename Faults = NoFaults>
 ExperimentRunOf<K, Q> run_experiment_on(Plant& plant, const BoxScenario& scenario, const ExperimentSetup& setup,
-                                        unsigned long long seed = 1, const std::function<void(double)>& progress = {})
+                                        unsigned long long seed = 1, const std::function<void(double)>& progress = {},
+                                        Faults&& faults = Faults{})
 {
     const coopdyn::ControllerModel<double, K, Q> controller(setup.parameters);
     coopdyn::ControllerData<double, K, Q> data(controller);
@@ -351,13 +374,16 @@ ExperimentRunOf<K, Q> run_experiment_on(Plant& plant, const BoxScenario& scenari
         input.desired_pose = desired.pose;
         input.desired_twist = desired.twist;
         input.desired_acceleration = desired.acceleration;
+        const coopdyn::RigidBodyState<double> box = input.object;  // the plant's, for the log and the person
+        faults.corrupt_input(tick, t, input);
 
         const auto tick_start = std::chrono::steady_clock::now();
         tau = coopdyn::controller_tick(controller, data, input);
         run.tick_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tick_start).count();
         const double torque_use = saturate(tau, limit);
+        faults.corrupt_torque(tick, t, tau, input, data);
         const Vector6d disturbance =
-            person.wrench(t, input.object.pose.position, input.object.twist.template head<3>());
+            person.wrench(t, box.pose.position, box.twist.template head<3>());
         plant.end_tick(tau, disturbance);
         if (tick < 0) {
             continue;
@@ -365,12 +391,12 @@ ExperimentRunOf<K, Q> run_experiment_on(Plant& plant, const BoxScenario& scenari
         if (tick == 0) {
             for (std::size_t i = 0; i < count; ++i) {
                 box_in_palm[i] =
-                    palms_seen.rotation[i].transpose() * (input.object.pose.position - palms_seen.position[i]);
+                    palms_seen.rotation[i].transpose() * (box.pose.position - palms_seen.position[i]);
             }
         }
 
-        TickLogOf<K, Q> row = tick_log<K, Q>(plant, input, desired, data, t, disturbance, torque_use);
-        log_palms(plant, palms_seen, data, friction, box_in_palm, input.object.pose.position, count, row);
+        TickLogOf<K, Q> row = tick_log<K, Q>(plant, box, desired, data, t, disturbance, torque_use);
+        log_palms(plant, palms_seen, data, friction, box_in_palm, box.pose.position, count, row);
         run.log.push_back(row);
 
         if (*std::max_element(row.slip.begin(), row.slip.begin() + static_cast<std::ptrdiff_t>(count)) > drop_slip) {
