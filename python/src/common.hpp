@@ -53,6 +53,16 @@ Vector to_vector(py::handle value, const char* function, const char* name, Index
 py::array matrix_copy(const Eigen::Ref<const Matrix>& matrix, bool read_only = false);
 py::array vector_copy(const Eigen::Ref<const Vector>& vector, bool read_only = false);
 
+/// Raises InvalidArgument (function, name) when an argument (a Data, Setpoints, ...) was made for
+/// another number of arms than the model's.
+inline void require_arms(Index arms, Index expected, const char* function, const char* name)
+{
+    if (arms != expected) {
+        fail_argument(function, name,
+                      "was made for N = " + std::to_string(arms) + " arms, the model has N = " + std::to_string(expected));
+    }
+}
+
 // ---- templates shared by the bindings of classes -------------------------------------------
 
 inline std::string dims(Index rows, Index cols) { return "(" + std::to_string(rows) + ", " + std::to_string(cols) + ")"; }

@@ -22,15 +22,6 @@ using DataX = Data<ModelX>;
 using SetpointsX = Setpoints<double, Dynamic>;
 using State = RigidBodyState<double>;
 
-/// Raises InvalidArgument when `what` (data or setpoints) was sized for another number of arms.
-void require_arms(Index arms, Index expected, const char* function, const char* name)
-{
-    if (arms != expected) {
-        fail_argument(function, name,
-                      "was made for N = " + std::to_string(arms) + " arms, the model has N = " + std::to_string(expected));
-    }
-}
-
 py::list arm_list(const std::vector<ModelX::ArmType>& arms)
 {
     py::list result;

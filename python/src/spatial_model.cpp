@@ -20,14 +20,6 @@ using SetpointsX = Setpoints<double, Dynamic>;
 using DisturbancesX = Disturbances<double, Dynamic>;
 using State = RigidBodyState<double>;
 
-void require_arms(Index arms, Index expected, const char* function, const char* name)
-{
-    if (arms != expected) {
-        fail_argument(function, name,
-                      "was made for N = " + std::to_string(arms) + " arms, the model has N = " + std::to_string(expected));
-    }
-}
-
 void bind_parts(py::module_& module)
 {
     py::class_<Object> object(module, "RigidObject",
