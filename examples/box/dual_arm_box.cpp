@@ -9,6 +9,7 @@
 // 0 success, 1 run-time failure (the box dropped, gnuplot), 2 bad command line, 3 invalid
 // scenario file, 4 a file that cannot be read or written.
 #include "box_report.hpp"
+#include "box_runs.hpp"  // the runs, compiled once (box_example_runs)
 #include "box_scenario_loader.hpp"
 #include "lwr4_run.hpp"
 #include "minimum_squeeze.hpp"
