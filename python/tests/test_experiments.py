@@ -131,3 +131,18 @@ def test_beam_errors():
         experiments.beam("x", runs=3)
     with pytest.raises(ValueError, match="100 samples"):
         experiments.beam("x", duration=0.05)
+
+
+def test_the_box_friction_sweep_example(tmp_path):
+    """examples/python/sweep_box_friction.py: a run per mu, the squeeze rises as mu falls, a plot."""
+    import importlib.util
+    pytest.importorskip("matplotlib")
+    path = SOURCE / "examples" / "python" / "sweep_box_friction.py"
+    spec = importlib.util.spec_from_file_location("sweep_box_friction", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    runs = module.main(["--duration", "2", "--mu", "0.2", "1.0", "--output", str(tmp_path)])
+    assert list(runs) == [0.2, 1.0]
+    # The person's push (from 1 s on) needs more squeeze under the controller's smaller mu.
+    assert runs[0.2].log["left_pred_fz"].max() > runs[1.0].log["left_pred_fz"].max()
+    assert (tmp_path / "sweep_box_friction_rigid.png").stat().st_size > 10000
