@@ -14,4 +14,24 @@ template ExperimentResult run_experiment<coopdyn::ImpedanceModelX>(const Scenari
                                                                   const ExperimentSpec&, const RunOptions&, Progress&,
                                                                   unsigned long long);
 
+ExperimentResult run_beam_experiment(const Scenario& scenario, const ExperimentSpec& spec, const RunOptions& options,
+                                     unsigned long long seed_offset)
+{
+    Progress progress(false);
+    switch (scenario.arm_count()) {
+    case 2: {
+        const coopdyn::ImpedanceModel<2> model(scenario.object, scenario.arms, scenario.gravity);
+        return run_experiment(scenario, model, spec, options, progress, seed_offset);
+    }
+    case 3: {
+        const coopdyn::ImpedanceModel<3> model(scenario.object, scenario.arms, scenario.gravity);
+        return run_experiment(scenario, model, spec, options, progress, seed_offset);
+    }
+    default: {
+        const coopdyn::ImpedanceModelX model(scenario.object, scenario.arms, scenario.gravity);
+        return run_experiment(scenario, model, spec, options, progress, seed_offset);
+    }
+    }
+}
+
 }  // namespace beam_example

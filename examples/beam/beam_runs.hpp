@@ -20,4 +20,10 @@ extern template ExperimentResult run_experiment<coopdyn::ImpedanceModelX>(
     const Scenario&, const coopdyn::ImpedanceModelX&, const ExperimentSpec&, const RunOptions&, Progress&,
     unsigned long long);
 
+/// two_arm_beam's run on the Model of the scenario's arm count (ImpedanceModel<2>, <3>, or
+/// ImpedanceModelX), without a progress line: for callers that build no Model themselves (the
+/// Python module), compiled in beam_runs.cpp.
+ExperimentResult run_beam_experiment(const Scenario& scenario, const ExperimentSpec& spec, const RunOptions& options,
+                                     unsigned long long seed_offset);
+
 }  // namespace beam_example

@@ -12,11 +12,13 @@
 #include "box_report.hpp"
 
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace scenes {
 class RigidScenePlant;
 class MujocoScenePlant;
+struct Scene;
 }  // namespace scenes
 
 namespace box_example {
@@ -41,5 +43,21 @@ extern template DynamicRun run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, Sce
 extern template BoxSummary summarise<palms, joints>(const BoxScenario&, const std::string&, const ExperimentRun&);
 extern template BoxSummary summarise<Eigen::Dynamic, Eigen::Dynamic>(const BoxScenario&, const std::string&,
                                                                      const DynamicRun&);
+
+/// A run on the LWR 4 pair and, when asked, its minimum squeeze (measure_minimum_squeeze).
+struct Lwr4Run {
+    ExperimentRun run;
+    std::optional<double> minimum_squeeze;
+};
+
+/// The LWR 4 pair's world loaded from `mjcf` (DualArmBoxModel), `scenario` on one plant from its
+/// hold grasp (run_lwr4_experiment, as dual_arm_box runs it) and, on the MuJoCo plant when
+/// `measure_squeeze`, the least squeeze that holds the box. For callers that need none of the
+/// plants' headers (the Python module): compiled in box_runs.cpp.
+Lwr4Run run_lwr4_world(const std::string& mjcf, const BoxScenario& scenario, bool rigid, unsigned long long seed,
+                       bool measure_squeeze);
+/// scene_box.hpp's run_scene_experiment, compiled in box_runs.cpp.
+DynamicRun run_scene_world(const scenes::Scene& scene, const BoxScenario& scenario, bool rigid,
+                           unsigned long long seed);
 
 }  // namespace box_example

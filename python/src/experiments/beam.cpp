@@ -1,8 +1,8 @@
 // coopdyn._experiments.beam_run: the first paper's two-arm beam experiment (Erhart & Hirche 2016,
 // Section V; docs/two-arm-beam.md) as the program two_arm_beam runs it (beam_experiment.hpp's
-// run_experiment on the Model of the scenario's arm count), returning the log's columns
-// (emit_log) and the identification table's rows (emit_summary) instead of writing files. The
-// GIL is released while the experiment runs.
+// run_experiment on the Model of the scenario's arm count, compiled in beam_example_runs:
+// run_beam_experiment), returning the log's columns (emit_log) and the identification table's rows
+// (emit_summary) instead of writing files. The GIL is released while the experiment runs.
 #include "columns.hpp"
 
 #include "beam/beam_experiment.hpp"
@@ -23,16 +23,14 @@ namespace {
 
 using namespace beam_example;
 
-template <typename ModelType>
+/// (log columns, identification summary) of one experiment: the run compiled in beam_example_runs.
 py::tuple run_on(const Scenario& scenario, const ExperimentSpec& spec, const RunOptions& options,
                  unsigned long long index)
 {
     std::optional<ExperimentResult> result;
     {
         py::gil_scoped_release release;
-        const ModelType model(scenario.object, scenario.arms, scenario.gravity);
-        Progress progress(false);
-        result.emplace(run_experiment(scenario, model, spec, options, progress, index));
+        result.emplace(run_beam_experiment(scenario, spec, options, index));
     }
     ColumnSink log(log_columns(scenario.arm_count()));
     emit_log(log, result->log);
@@ -78,11 +76,7 @@ py::tuple beam_run(const std::string& file, const std::string& experiment, doubl
                               "scenario's time step");
     }
     const auto index = static_cast<unsigned long long>(spec - specs.begin());  // the program's seed offset
-    switch (scenario.arm_count()) {
-    case 2: return run_on<coopdyn::ImpedanceModel<2>>(scenario, *spec, options, index);
-    case 3: return run_on<coopdyn::ImpedanceModel<3>>(scenario, *spec, options, index);
-    default: return run_on<coopdyn::ImpedanceModelX>(scenario, *spec, options, index);
-    }
+    return run_on(scenario, *spec, options, index);
 }
 
 }  // namespace

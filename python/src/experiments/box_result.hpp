@@ -1,7 +1,6 @@
 // What coopdyn.experiments.box returns of one dual-arm box run (docs/python.md, "The
 // experiments"): the log's columns (box_report.hpp's emit_box_log into a ColumnSink) and the
-// summary (summarise) as a dict. Shared by the LWR 4 pair's translation unit (box_lwr4.cpp, fixed
-// sizes) and the scenes' (box_scene.cpp, dynamic sizes), which compile in parallel.
+// summary (summarise, compiled in box_example_runs) as a dict.
 #pragma once
 
 #include "columns.hpp"
@@ -53,9 +52,5 @@ py::tuple box_result(const box_example::ExperimentRunOf<K, Q>& run, const box_ex
     summary.minimum_squeeze = minimum_squeeze;
     return py::make_tuple(sink.to_dict(), summary_dict(summary));
 }
-
-/// A scenario with a scene on it (box_scene.cpp): scene_box.hpp's run_scene_experiment.
-py::tuple run_scene_box(const box_example::BoxScenario& scenario, bool rigid, unsigned long long seed,
-                        std::size_t log_every);
 
 }  // namespace coopdyn::python::experiments

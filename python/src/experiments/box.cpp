@@ -1,13 +1,12 @@
 // coopdyn._experiments.box_run: the dual-arm box experiment (Lin et al. section IV;
 // docs/dual-arm-box.md) as the program dual_arm_box runs it, returning the log's columns and the
-// run's summary (box_result.hpp) instead of writing files: here the scenario file and the LWR 4
-// pair (lwr4_run.hpp, fixed sizes); a scene's scenario goes to box_scene.cpp. The GIL is released
-// while the experiment runs.
+// run's summary (box_result.hpp) instead of writing files. The runs are the ones compiled in
+// box_example_runs (box_runs.hpp: the LWR 4 pair's run_lwr4_world, a scene's run_scene_world), so
+// this file needs none of the plants' headers. The GIL is released while the experiment runs.
 #include "box_result.hpp"
 
 #include "box/box_scenario_loader.hpp"
-#include "box/lwr4_run.hpp"
-#include "box/minimum_squeeze.hpp"
+#include "scenes/scene.hpp"
 
 #include <optional>
 #include <string>
@@ -38,22 +37,21 @@ py::tuple box_run(const std::string& file, const std::string& plant, std::option
     }
     const bool rigid = plant == "rigid";
     if (scenario.scene) {
-        return run_scene_box(scenario, rigid, seed, log_every);
+        const scenes::Scene scene = scenes::read_scene(*scenario.scene);
+        std::optional<DynamicRun> run;
+        {
+            py::gil_scoped_release release;
+            run.emplace(run_scene_world(scene, scenario, rigid, seed));
+        }
+        return box_result(*run, scenario, plant, log_every, std::nullopt);  // measured on the LWR 4 pair only
     }
-    std::optional<ExperimentRun> run;
-    std::optional<double> squeeze;
+    std::optional<Lwr4Run> run;
     {
         py::gil_scoped_release release;
-        const DualArmBoxModel world(std::string(COOPDYN_BOX_DIR) + "/dual_arm_box.xml");
-        const Grasp grasp = hold_grasp(world);
-        run.emplace(run_lwr4_experiment(world, scenario, grasp, rigid, seed));
-        if (minimum_squeeze && !rigid) {
-            if (const auto measured = measure_minimum_squeeze(world, grasp, scenario)) {
-                squeeze = measured->squeeze;
-            }
-        }
+        run.emplace(run_lwr4_world(std::string(COOPDYN_BOX_DIR) + "/dual_arm_box.xml", scenario, rigid, seed,
+                                   minimum_squeeze));
     }
-    return box_result(*run, scenario, plant, log_every, squeeze);
+    return box_result(run->run, scenario, plant, log_every, run->minimum_squeeze);
 }
 
 }  // namespace
