@@ -62,6 +62,79 @@ void set_state(OwnedArms& self, const py::handle& qpos, const py::handle& qvel)
     mj_forward(model, self.data());
 }
 
+/// An Eigen matrix or vector of the given size that `read` fills, returned as a new numpy array.
+template <typename Read> py::array read_matrix(Index rows, Index cols, const Read& read)
+{
+    Eigen::MatrixXd m(rows, cols);
+    read(m);
+    return matrix(m);
+}
+template <typename Read> py::array read_vector(Index size, const Read& read)
+{
+    Eigen::VectorXd v(size);
+    read(v);
+    return copy(v.data(), v.size());
+}
+
+/// The adapter's reads one at a time, as arrays: for arms that no ControllerInput fits (the
+/// controller needs K >= 2 and Q >= 6K; the adapter does not).
+void bind_single_reads(py::class_<OwnedArms>& arms)
+{
+    arms.def("inertia", [](const OwnedArms& self) {
+        const Index q = self.arms().joints();
+        return read_matrix(q, q, [&](Eigen::MatrixXd& m) { self.arms().read_inertia(self.model(), self.data(), m); });
+    }, "M (Q, Q), armature included (C++ read_inertia).");
+    arms.def("bias", [](const OwnedArms& self) {
+        return read_vector(self.arms().joints(), [&](Eigen::VectorXd& v) { self.arms().read_bias(self.data(), v); });
+    }, "h = C qdot + g (Q,): MuJoCo's qfrc_bias, no passive forces (C++ read_bias).");
+    arms.def("jacobian", [](const OwnedArms& self) {
+        return read_matrix(6 * self.arms().arms(), self.arms().joints(),
+                           [&](Eigen::MatrixXd& m) { self.arms().read_jacobian(self.model(), self.data(), m); });
+    }, "J (6K, Q): rows 6i..6i+5 map qdot to contact i's [v; w] in {w} (C++ read_jacobian).");
+    arms.def("jacobian_rate_qdot", [](const OwnedArms& self) {
+        return read_vector(6 * self.arms().arms(), [&](Eigen::VectorXd& v) {
+            self.arms().read_jacobian_rate_qdot(self.model(), self.data(), v);
+        });
+    }, "Jdot qdot (6K,): each contact point's classical acceleration [a; alpha] at zero joint acceleration, "
+       "without gravity (C++ read_jacobian_rate_qdot).");
+    arms.def("positions", [](const OwnedArms& self) {
+        return read_vector(self.arms().joints(), [&](Eigen::VectorXd& v) { self.arms().read_positions(self.data(), v); });
+    }, "q (Q,), the chosen joints'.");
+    arms.def("velocities", [](const OwnedArms& self) {
+        return read_vector(self.arms().joints(), [&](Eigen::VectorXd& v) { self.arms().read_velocities(self.data(), v); });
+    }, "qdot (Q,), the chosen joints'.");
+}
+
+/// The contacts' frames, the contact points in the object and the object's state.
+void bind_contacts(py::class_<OwnedArms>& arms)
+{
+    arms.def("contact_position",
+             [](const OwnedArms& self, Index i) {
+                 const Eigen::Vector3d p = self.arms().contact_position(self.data(), contact_index(self, i));
+                 return copy(p.data(), 3);
+             },
+             py::arg("i"), "Contact i's point in {w} (3,).");
+    arms.def("contact_rotation",
+             [](const OwnedArms& self, Index i) {
+                 return matrix(self.arms().contact_rotation(self.data(), contact_index(self, i)));
+             },
+             py::arg("i"), "Contact i's rotation to {w} (3, 3): columns x, y, z = the inward normal.");
+    arms.def("contact_pose",
+             [](const OwnedArms& self, Index i) { return self.arms().contact_pose(self.data(), contact_index(self, i)); },
+             py::arg("i"), "Contact i's frame in {w} (coopdyn.Pose).");
+    arms.def("contact_points",
+             [](const OwnedArms& self, const std::string& object_body, const ContactFriction<double>& friction) {
+                 return self.arms().contact_points(self.model(), self.data(), object_body, friction);
+             },
+             py::arg("object_body"), py::arg("friction") = ContactFriction<double>{},
+             "ControllerParameters.contacts from the current state: each contact frame in the object's frame.");
+    arms.def("object_state",
+             [](const OwnedArms& self, const std::string& body) {
+                 return mujoco_object_state(self.model(), self.data(), detail::mujoco_body_id(self.model(), body));
+             },
+             py::arg("body"), "The body's centre-of-mass pose and twist [v; w] (coopdyn.RigidBodyState).");
+}
+
 }  // namespace
 
 void bind_arms(py::module_& module)
@@ -113,51 +186,6 @@ void bind_arms(py::module_& module)
         py::arg("input"),
         "Fills input's inertia M, bias h, jacobian J (6K, Q), jacobian_rate_qdot, positions, velocities and the "
         "contacts' poses from the current state (docs/adapters.md, \"What read reads\").");
-    // The same reads one at a time, as arrays: for arms that no ControllerInput fits (the
-    // controller needs K >= 2 and Q >= 6K; the adapter does not).
-    arms.def("inertia",
-             [](const OwnedArms& self) {
-                 Eigen::MatrixXd m(self.arms().joints(), self.arms().joints());
-                 self.arms().read_inertia(self.model(), self.data(), m);
-                 return matrix(m);
-             },
-             "M (Q, Q), armature included (C++ read_inertia).");
-    arms.def("bias",
-             [](const OwnedArms& self) {
-                 Eigen::VectorXd h(self.arms().joints());
-                 self.arms().read_bias(self.data(), h);
-                 return copy(h.data(), h.size());
-             },
-             "h = C qdot + g (Q,): MuJoCo's qfrc_bias, no passive forces (C++ read_bias).");
-    arms.def("jacobian",
-             [](const OwnedArms& self) {
-                 Eigen::MatrixXd j(6 * self.arms().arms(), self.arms().joints());
-                 self.arms().read_jacobian(self.model(), self.data(), j);
-                 return matrix(j);
-             },
-             "J (6K, Q): rows 6i..6i+5 map qdot to contact i's [v; w] in {w} (C++ read_jacobian).");
-    arms.def("jacobian_rate_qdot",
-             [](const OwnedArms& self) {
-                 Eigen::VectorXd r(6 * self.arms().arms());
-                 self.arms().read_jacobian_rate_qdot(self.model(), self.data(), r);
-                 return copy(r.data(), r.size());
-             },
-             "Jdot qdot (6K,): each contact point's classical acceleration [a; alpha] at zero joint "
-             "acceleration, without gravity (C++ read_jacobian_rate_qdot).");
-    arms.def("positions",
-             [](const OwnedArms& self) {
-                 Eigen::VectorXd q(self.arms().joints());
-                 self.arms().read_positions(self.data(), q);
-                 return copy(q.data(), q.size());
-             },
-             "q (Q,), the chosen joints'.");
-    arms.def("velocities",
-             [](const OwnedArms& self) {
-                 Eigen::VectorXd v(self.arms().joints());
-                 self.arms().read_velocities(self.data(), v);
-                 return copy(v.data(), v.size());
-             },
-             "qdot (Q,), the chosen joints'.");
     arms.def(
         "step",
         [](const OwnedArms& self, const py::handle& tau) {
@@ -169,31 +197,8 @@ void bind_arms(py::module_& module)
         py::arg("tau"),
         "Applies tau (Q,) to the chosen joints (qfrc_applied) for one MuJoCo step (mj_step2, then mj_step1 of "
         "the next: read() sees the new state).");
-    arms.def("contact_position",
-             [](const OwnedArms& self, Index i) {
-                 const Eigen::Vector3d p = self.arms().contact_position(self.data(), contact_index(self, i));
-                 return copy(p.data(), 3);
-             },
-             py::arg("i"), "Contact i's point in {w} (3,).");
-    arms.def("contact_rotation",
-             [](const OwnedArms& self, Index i) {
-                 return matrix(self.arms().contact_rotation(self.data(), contact_index(self, i)));
-             },
-             py::arg("i"), "Contact i's rotation to {w} (3, 3): columns x, y, z = the inward normal.");
-    arms.def("contact_pose",
-             [](const OwnedArms& self, Index i) { return self.arms().contact_pose(self.data(), contact_index(self, i)); },
-             py::arg("i"), "Contact i's frame in {w} (coopdyn.Pose).");
-    arms.def("contact_points",
-             [](const OwnedArms& self, const std::string& object_body, const ContactFriction<double>& friction) {
-                 return self.arms().contact_points(self.model(), self.data(), object_body, friction);
-             },
-             py::arg("object_body"), py::arg("friction") = ContactFriction<double>{},
-             "ControllerParameters.contacts from the current state: each contact frame in the object's frame.");
-    arms.def("object_state",
-             [](const OwnedArms& self, const std::string& body) {
-                 return mujoco_object_state(self.model(), self.data(), detail::mujoco_body_id(self.model(), body));
-             },
-             py::arg("body"), "The body's centre-of-mass pose and twist [v; w] (coopdyn.RigidBodyState).");
+    bind_single_reads(arms);
+    bind_contacts(arms);
 }
 
 }  // namespace coopdyn::python::mujoco
