@@ -146,3 +146,15 @@ def test_the_box_friction_sweep_example(tmp_path):
     # The person's push (from 1 s on) needs more squeeze under the controller's smaller mu.
     assert runs[0.2].log["left_pred_fz"].max() > runs[1.0].log["left_pred_fz"].max()
     assert (tmp_path / "sweep_box_friction_rigid.png").stat().st_size > 10000
+
+
+def test_box_minimum_squeeze_is_coulombs_estimate():
+    """minimum_squeeze=True: the least squeeze that holds the 0.7 kg box in MuJoCo (mu = 0.5) is at
+    least Coulomb's W / (2 mu) = 6.87 N and within 15 % of it (the sag's moment on the 8 x 8 cm
+    palms; test_box_plants.cpp's bounds); the rigid plant measures none."""
+    coulomb = 0.7 * 9.81 / (2 * 0.5)
+    _, summary = experiments.box("hold", plant="mujoco", duration=1.0, minimum_squeeze=True)
+    assert summary["coulomb_estimate"] == pytest.approx(coulomb, rel=1e-3)
+    assert coulomb <= summary["minimum_squeeze"] <= 1.15 * coulomb
+    _, rigid = experiments.box("hold", plant="rigid", duration=0.2, minimum_squeeze=True)
+    assert rigid["minimum_squeeze"] is None
