@@ -304,22 +304,18 @@ inline std::vector<std::string> log_columns(Eigen::Index arms)
 
 using example_common::CsvWriter;
 
-/// Writes the log's steps 0, every, 2 every, ... (every >= 1; --log-every): the file is thinned, the
-/// log itself (and all that was computed from it) is not.
-inline void write_log_csv(const std::filesystem::path& path, const ExperimentLog& log, Eigen::Index every = 1)
+/// Writes the log's steps 0, every, 2 every, ... (every >= 1; --log-every) to `sink`, in
+/// log_columns' order, one end_row() per step: the file is thinned, the log itself (and all that was
+/// computed from it) is not. `sink` has number(double) and end_row(): the CSV writer here, numpy
+/// columns in the Python module (python/src/experiments/, docs/python.md).
+template <typename Sink> void emit_log(Sink& sink, const ExperimentLog& log, Eigen::Index every = 1)
 {
     every = std::max<Eigen::Index>(every, 1);
-    CsvWriter csv(path);
-    const Eigen::Index arms = log.arm_wrenches.rows() / 18;
-    for (const std::string& column : log_columns(arms)) {
-        csv.text(column);
-    }
-    csv.end_row();
     for (Eigen::Index n = 0; n < log.samples(); n += every) {
-        csv.number(log.time(n));
+        sink.number(log.time(n));
         const auto block = [&](const auto& matrix) {
             for (Eigen::Index row = 0; row < matrix.rows(); ++row) {
-                csv.number(matrix(row, n));
+                sink.number(matrix(row, n));
             }
         };
         block(log.applied);
@@ -332,8 +328,19 @@ inline void write_log_csv(const std::filesystem::path& path, const ExperimentLog
         block(log.identification_wrench);
         block(log.identification_displacement);
         block(log.arm_wrenches);
-        csv.end_row();
+        sink.end_row();
     }
+}
+
+/// The log's CSV file (docs/two-arm-beam.md): the header, then emit_log.
+inline void write_log_csv(const std::filesystem::path& path, const ExperimentLog& log, Eigen::Index every = 1)
+{
+    CsvWriter csv(path);
+    for (const std::string& column : log_columns(log.arm_wrenches.rows() / 18)) {
+        csv.text(column);
+    }
+    csv.end_row();
+    emit_log(csv, log, every);
     csv.close();
 }
 
@@ -347,6 +354,39 @@ inline const std::vector<std::string>& summary_columns()
     return columns;
 }
 
+/// The identification summary's rows (summary_columns' order, one end_row() per row) to `sink`
+/// (number, optional, text, end_row: the CSV writer, or the Python module's numpy columns).
+template <typename Sink>
+void emit_summary(Sink& sink, const Scenario& scenario, const std::vector<ExperimentResult>& results,
+                  const RunOptions& options)
+{
+    const std::array<const char*, 6> axis_keys{"x", "y", "z", "rot_x", "rot_y", "rot_z"};
+    for (const ExperimentResult& result : results) {
+        const PaperExperiment* paper = paper_reference(scenario, result.spec.id);
+        for (const ComparisonRow& row : comparison_rows(scenario, result)) {
+            sink.text(scenario.name);
+            sink.text(result.spec.id);
+            sink.text(axis_keys[row.axis]);
+            sink.text(parameter_key(row.parameter));
+            sink.text(parameter_row(row.parameter, row.axis).unit);
+            sink.optional(row.paper_nominal);
+            sink.number(row.nominal);
+            sink.number(row.identified);
+            sink.number(relative_error(row.identified, row.nominal));
+            sink.optional(row.paper_identified);
+            sink.optional(row.paper_identified ? std::optional<double>(relative_error(*row.paper_identified, row.nominal))
+                                               : std::nullopt);
+            sink.number(row.mean_squared_output_error);
+            sink.optional(paper != nullptr && result.spec.id != "se3" ? paper->mean_squared_output_error
+                                                                      : std::nullopt);
+            sink.text(options.sensors.enabled ? "1" : "0");
+            sink.number(options.duration);
+            sink.text(result.fit.axes[row.axis].converged ? "1" : "0");
+            sink.end_row();
+        }
+    }
+}
+
 inline void write_summary_csv(const std::filesystem::path& path, const Scenario& scenario,
                               const std::vector<ExperimentResult>& results, const RunOptions& options)
 {
@@ -355,31 +395,7 @@ inline void write_summary_csv(const std::filesystem::path& path, const Scenario&
         csv.text(column);
     }
     csv.end_row();
-    const std::array<const char*, 6> axis_keys{"x", "y", "z", "rot_x", "rot_y", "rot_z"};
-    for (const ExperimentResult& result : results) {
-        const PaperExperiment* paper = paper_reference(scenario, result.spec.id);
-        for (const ComparisonRow& row : comparison_rows(scenario, result)) {
-            csv.text(scenario.name);
-            csv.text(result.spec.id);
-            csv.text(axis_keys[row.axis]);
-            csv.text(parameter_key(row.parameter));
-            csv.text(parameter_row(row.parameter, row.axis).unit);
-            csv.optional(row.paper_nominal);
-            csv.number(row.nominal);
-            csv.number(row.identified);
-            csv.number(relative_error(row.identified, row.nominal));
-            csv.optional(row.paper_identified);
-            csv.optional(row.paper_identified ? std::optional<double>(relative_error(*row.paper_identified, row.nominal))
-                                              : std::nullopt);
-            csv.number(row.mean_squared_output_error);
-            csv.optional(paper != nullptr && result.spec.id != "se3" ? paper->mean_squared_output_error
-                                                                     : std::nullopt);
-            csv.text(options.sensors.enabled ? "1" : "0");
-            csv.number(options.duration);
-            csv.text(result.fit.axes[row.axis].converged ? "1" : "0");
-            csv.end_row();
-        }
-    }
+    emit_summary(csv, scenario, results, options);
     csv.close();
 }
 

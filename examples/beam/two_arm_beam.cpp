@@ -22,6 +22,7 @@
 
 #include "beam_experiment.hpp"
 #include "beam_identify_log.hpp"
+#include "beam_runs.hpp"  // the experiments, compiled once (beam_example_runs)
 #include "beam_report.hpp"
 #include "scenario.hpp"
 

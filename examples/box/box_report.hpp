@@ -137,8 +137,50 @@ inline std::vector<std::string> box_log_columns(const std::vector<std::string>& 
     return columns;
 }
 
-/// Writes every `every`-th tick of the run (--log-every; ticks 0, every, 2 every, ...): the file is
-/// thinned, the run (and the summary computed from it) is not.
+/// Writes every `every`-th tick of the run (--log-every; ticks 0, every, 2 every, ...) to `sink`, in
+/// box_log_columns' order, one end_row() per tick: the file is thinned, the run (and the summary
+/// computed from it) is not. `sink` has number(double), text(string) and end_row(): the CSV writer
+/// here, numpy columns in the Python module (python/src/experiments/, docs/python.md).
+template <int K, int Q, typename Sink>
+void emit_box_log(Sink& sink, const ExperimentRunOf<K, Q>& run, std::size_t every = 1)
+{
+    const auto numbers = [&sink](const auto& vector) {
+        for (Eigen::Index k = 0; k < vector.size(); ++k) {
+            sink.number(vector(k));
+        }
+    };
+    for (std::size_t tick = 0; tick < run.log.size(); tick += std::max<std::size_t>(every, 1)) {
+        const TickLogOf<K, Q>& row = run.log[tick];
+        sink.number(row.time);
+        numbers(row.box_position);
+        numbers(row.desired_position);
+        sink.number(row.orientation_error);
+        numbers(row.external_wrench);
+        numbers(row.disturbance.template head<3>());
+        numbers(row.box_acceleration);
+        for (std::size_t i = 0; i < run.palm_count(); ++i) {
+            numbers(row.predicted[i]);
+            sink.number(row.predicted[i].template head<3>().norm());
+            numbers(row.measured[i]);
+            sink.number(row.measured[i].template head<3>().norm());
+            sink.number(row.measured_margins[i].force);
+            sink.number(row.measured_margins[i].moment);
+            sink.number(row.slip[i]);
+        }
+        sink.number(row.predicted_force_margin);
+        sink.number(row.predicted_moment_margin);
+        sink.text(coopdyn::to_string(row.status));
+        sink.text(row.qp_ran ? coopdyn::to_string(row.qp_status) : "not_run");  // no stale status
+        sink.number(row.qp_iterations);
+        numbers(row.motion_torque);
+        numbers(row.squeeze_torque);
+        sink.number(row.torque_use);
+        sink.number(row.box_mass);
+        sink.end_row();
+    }
+}
+
+/// The run's CSV log (docs/dual-arm-box.md, "The CSV columns"): the header, then emit_box_log.
 template <int K, int Q>
 void write_box_log(const std::filesystem::path& path, const ExperimentRunOf<K, Q>& run, std::size_t every = 1)
 {
@@ -147,40 +189,7 @@ void write_box_log(const std::filesystem::path& path, const ExperimentRunOf<K, Q
         csv.text(column);
     }
     csv.end_row();
-    const auto numbers = [&csv](const auto& vector) {
-        for (Eigen::Index k = 0; k < vector.size(); ++k) {
-            csv.number(vector(k));
-        }
-    };
-    for (std::size_t tick = 0; tick < run.log.size(); tick += std::max<std::size_t>(every, 1)) {
-        const TickLogOf<K, Q>& row = run.log[tick];
-        csv.number(row.time);
-        numbers(row.box_position);
-        numbers(row.desired_position);
-        csv.number(row.orientation_error);
-        numbers(row.external_wrench);
-        numbers(row.disturbance.template head<3>());
-        numbers(row.box_acceleration);
-        for (std::size_t i = 0; i < run.palm_count(); ++i) {
-            numbers(row.predicted[i]);
-            csv.number(row.predicted[i].template head<3>().norm());
-            numbers(row.measured[i]);
-            csv.number(row.measured[i].template head<3>().norm());
-            csv.number(row.measured_margins[i].force);
-            csv.number(row.measured_margins[i].moment);
-            csv.number(row.slip[i]);
-        }
-        csv.number(row.predicted_force_margin);
-        csv.number(row.predicted_moment_margin);
-        csv.text(coopdyn::to_string(row.status));
-        csv.text(row.qp_ran ? coopdyn::to_string(row.qp_status) : "not_run");  // no stale status
-        csv.number(row.qp_iterations);
-        numbers(row.motion_torque);
-        numbers(row.squeeze_torque);
-        csv.number(row.torque_use);
-        csv.number(row.box_mass);
-        csv.end_row();
-    }
+    emit_box_log(csv, run, every);
     csv.close();
 }
 

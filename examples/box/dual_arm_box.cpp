@@ -9,10 +9,10 @@
 // 0 success, 1 run-time failure (the box dropped, gnuplot), 2 bad command line, 3 invalid
 // scenario file, 4 a file that cannot be read or written.
 #include "box_report.hpp"
+#include "box_runs.hpp"  // the runs, compiled once (box_example_runs)
 #include "box_scenario_loader.hpp"
+#include "lwr4_run.hpp"
 #include "minimum_squeeze.hpp"
-#include "mujoco_plant.hpp"
-#include "mujoco_rigid_plant.hpp"
 #include "scene_box.hpp"
 
 #include "../common/cli.hpp"
@@ -122,16 +122,8 @@ void run_lwr4(const BoxScenario& scenario, const CommandLine& command, std::uniq
         }
         const std::string label = scenario.name + " (" + plant_name + ")";
         const auto update = [&](double fraction) { runs.progress.update(label, fraction); };
-        ExperimentRun run;
-        if (std::string(plant_name) == "mujoco") {
-            MujocoPlant plant(*world, scenario.plant_friction);
-            plant.set_box_mass(scenario.box_mass);
-            run = run_experiment(plant, scenario, grasp, command.seed, update);
-        } else {
-            const DataPointer start = world->make_data_at_hold();
-            RigidGraspPlant plant = make_rigid_plant(*world, *start, box_inertia(*world, scenario.box_mass));
-            run = run_experiment(plant, scenario, grasp, command.seed, update);
-        }
+        const ExperimentRun run =
+            run_lwr4_experiment(*world, scenario, grasp, std::string(plant_name) == "rigid", command.seed, update);
         runs.progress.finish();
         BoxSummary summary = report_one(run, scenario, plant_name, command, runs.plots);
         if (command.minimum_squeeze && std::string(plant_name) == "mujoco") {

@@ -8,7 +8,13 @@ controller); the equation numbers in the docstrings are theirs (docs/conventions
 
 from ._coopdyn import *  # noqa: F401,F403
 from ._coopdyn import Error, InvalidArgument, InvalidModel  # noqa: F401
-from . import _parameters
+from . import _parameters, experiments  # noqa: F401
+
+try:  # built where MuJoCo is found (docs/python.md, "The MuJoCo adapter")
+    from ._mujoco import MujocoArms  # noqa: F401
+except ModuleNotFoundError as error:
+    if error.name != __name__ + "._mujoco":
+        raise
 
 _parameters.install()
 

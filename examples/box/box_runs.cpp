@@ -1,0 +1,46 @@
+// The instances and functions box_runs.hpp declares: the box experiment's runs and summaries,
+// compiled once for dual_arm_box and the Python module (library box_example_runs).
+#include "box_runs.hpp"
+
+#include "lwr4_run.hpp"
+#include "minimum_squeeze.hpp"
+#include "scene_box.hpp"
+
+namespace box_example {
+
+template ExperimentRun run_experiment_on<palms, joints, MujocoPlant>(MujocoPlant&, const BoxScenario&,
+                                                                     const ExperimentSetup&, unsigned long long,
+                                                                     const ExperimentProgress&);
+template ExperimentRun run_experiment_on<palms, joints, RigidGraspPlant>(RigidGraspPlant&, const BoxScenario&,
+                                                                         const ExperimentSetup&, unsigned long long,
+                                                                         const ExperimentProgress&);
+template DynamicRun run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, SceneBoxPlant<scenes::RigidScenePlant>>(
+    SceneBoxPlant<scenes::RigidScenePlant>&, const BoxScenario&, const ExperimentSetup&, unsigned long long,
+    const ExperimentProgress&);
+template DynamicRun run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, SceneBoxPlant<scenes::MujocoScenePlant>>(
+    SceneBoxPlant<scenes::MujocoScenePlant>&, const BoxScenario&, const ExperimentSetup&, unsigned long long,
+    const ExperimentProgress&);
+template BoxSummary summarise<palms, joints>(const BoxScenario&, const std::string&, const ExperimentRun&);
+template BoxSummary summarise<Eigen::Dynamic, Eigen::Dynamic>(const BoxScenario&, const std::string&,
+                                                              const DynamicRun&);
+
+Lwr4Run run_lwr4_world(const std::string& mjcf, const BoxScenario& scenario, bool rigid, unsigned long long seed,
+                       bool measure_squeeze)
+{
+    const DualArmBoxModel world(mjcf);
+    const Grasp grasp = hold_grasp(world);
+    Lwr4Run result{run_lwr4_experiment(world, scenario, grasp, rigid, seed), std::nullopt};
+    if (measure_squeeze && !rigid) {
+        if (const auto measured = measure_minimum_squeeze(world, grasp, scenario)) {
+            result.minimum_squeeze = measured->squeeze;
+        }
+    }
+    return result;
+}
+
+DynamicRun run_scene_world(const scenes::Scene& scene, const BoxScenario& scenario, bool rigid, unsigned long long seed)
+{
+    return run_scene_experiment(scene, scenario, rigid, seed);
+}
+
+}  // namespace box_example
