@@ -8,18 +8,18 @@
 
 namespace box_example {
 
-template ExperimentRun run_experiment_on<palms, joints, MujocoPlant>(MujocoPlant&, const BoxScenario&,
+template ExperimentRun run_experiment_on<palms, joints, MujocoPlant, NoFaults>(MujocoPlant&, const BoxScenario&,
                                                                      const ExperimentSetup&, unsigned long long,
-                                                                     const ExperimentProgress&);
-template ExperimentRun run_experiment_on<palms, joints, RigidGraspPlant>(RigidGraspPlant&, const BoxScenario&,
+                                                                     const ExperimentProgress&, NoFaults&&);
+template ExperimentRun run_experiment_on<palms, joints, RigidGraspPlant, NoFaults>(RigidGraspPlant&, const BoxScenario&,
                                                                          const ExperimentSetup&, unsigned long long,
-                                                                         const ExperimentProgress&);
-template DynamicRun run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, SceneBoxPlant<scenes::RigidScenePlant>>(
+                                                                         const ExperimentProgress&, NoFaults&&);
+template DynamicRun run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, SceneBoxPlant<scenes::RigidScenePlant>, NoFaults>(
     SceneBoxPlant<scenes::RigidScenePlant>&, const BoxScenario&, const ExperimentSetup&, unsigned long long,
-    const ExperimentProgress&);
-template DynamicRun run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, SceneBoxPlant<scenes::MujocoScenePlant>>(
+    const ExperimentProgress&, NoFaults&&);
+template DynamicRun run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, SceneBoxPlant<scenes::MujocoScenePlant>, NoFaults>(
     SceneBoxPlant<scenes::MujocoScenePlant>&, const BoxScenario&, const ExperimentSetup&, unsigned long long,
-    const ExperimentProgress&);
+    const ExperimentProgress&, NoFaults&&);
 template BoxSummary summarise<palms, joints>(const BoxScenario&, const std::string&, const ExperimentRun&);
 template BoxSummary summarise<Eigen::Dynamic, Eigen::Dynamic>(const BoxScenario&, const std::string&,
                                                               const DynamicRun&);

@@ -1,6 +1,7 @@
 // The dual-arm box's runs, compiled once (box_runs.cpp, the library box_example_runs) for the
 // program dual_arm_box and the Python module's coopdyn.experiments.box (python/src/experiments/):
-// explicit instantiation declarations of run_experiment_on on the four plants and of summarise at
+// explicit instantiation declarations of run_experiment_on on the four plants (without faults:
+// the fault campaign instantiates its own, examples/faults) and of summarise at
 // both sizes, so that the files that include this header call those instances instead of
 // compiling them again (docs/python.md, "Compile time"). The plants are only declared here: a file
 // that includes this header parses the plants' headers it uses itself, and no others (their
@@ -30,16 +31,16 @@ template <typename ScenePlant> class SceneBoxPlant;
 using ExperimentProgress = std::function<void(double)>;
 using DynamicRun = ExperimentRunOf<Eigen::Dynamic, Eigen::Dynamic>;  // scene_box.hpp's SceneRun
 
-extern template ExperimentRun run_experiment_on<palms, joints, MujocoPlant>(
-    MujocoPlant&, const BoxScenario&, const ExperimentSetup&, unsigned long long, const ExperimentProgress&);
-extern template ExperimentRun run_experiment_on<palms, joints, RigidGraspPlant>(
-    RigidGraspPlant&, const BoxScenario&, const ExperimentSetup&, unsigned long long, const ExperimentProgress&);
-extern template DynamicRun run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, SceneBoxPlant<scenes::RigidScenePlant>>(
+extern template ExperimentRun run_experiment_on<palms, joints, MujocoPlant, NoFaults>(
+    MujocoPlant&, const BoxScenario&, const ExperimentSetup&, unsigned long long, const ExperimentProgress&, NoFaults&&);
+extern template ExperimentRun run_experiment_on<palms, joints, RigidGraspPlant, NoFaults>(
+    RigidGraspPlant&, const BoxScenario&, const ExperimentSetup&, unsigned long long, const ExperimentProgress&, NoFaults&&);
+extern template DynamicRun run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, SceneBoxPlant<scenes::RigidScenePlant>, NoFaults>(
     SceneBoxPlant<scenes::RigidScenePlant>&, const BoxScenario&, const ExperimentSetup&, unsigned long long,
-    const ExperimentProgress&);
-extern template DynamicRun run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, SceneBoxPlant<scenes::MujocoScenePlant>>(
+    const ExperimentProgress&, NoFaults&&);
+extern template DynamicRun run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, SceneBoxPlant<scenes::MujocoScenePlant>, NoFaults>(
     SceneBoxPlant<scenes::MujocoScenePlant>&, const BoxScenario&, const ExperimentSetup&, unsigned long long,
-    const ExperimentProgress&);
+    const ExperimentProgress&, NoFaults&&);
 extern template BoxSummary summarise<palms, joints>(const BoxScenario&, const std::string&, const ExperimentRun&);
 extern template BoxSummary summarise<Eigen::Dynamic, Eigen::Dynamic>(const BoxScenario&, const std::string&,
                                                                      const DynamicRun&);
