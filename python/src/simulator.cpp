@@ -16,40 +16,55 @@ using SetpointsX = Setpoints<double, Dynamic>;
 using DisturbancesX = Disturbances<double, Dynamic>;
 using State = RigidBodyState<double>;
 
-/// The log run() fills: one row per step taken, in numpy arrays made before the loop (their
-/// memory is written while the GIL is released; nothing else touches it then).
+/// The log run() fills: one row per step taken, in new C-order numpy arrays made before the loop.
+/// Their memory is resolved to row pointers once, here, with the GIL held: the loop writes through
+/// plain pointers while the GIL is released (no pybind11 call, nothing that can throw).
 struct RunLog {
     RunLog(Index steps, Index arms)
         : time(steps), position({steps, Index(3)}), orientation({steps, Index(4)}), twist({steps, Index(6)}),
-          object_acceleration({steps, Index(6)}), wrenches({steps, 6 * (arms + 1)}), columns(6 * (arms + 1))
+          object_acceleration({steps, Index(6)}), wrenches({steps, 6 * (arms + 1)}), columns(6 * (arms + 1)),
+          time_rows(time.mutable_data()), position_rows(position.mutable_data()),
+          orientation_rows(orientation.mutable_data()), twist_rows(twist.mutable_data()),
+          acceleration_rows(object_acceleration.mutable_data()), wrench_rows(wrenches.mutable_data())
     {
     }
     py::array_t<double> time, position, orientation, twist, object_acceleration, wrenches;
     Index columns;
+    double* time_rows;
+    double* position_rows;
+    double* orientation_rows;
+    double* twist_rows;
+    double* acceleration_rows;
+    double* wrench_rows;
     Index taken = 0;
 
     template <typename DataType> void write(double start_time, const State& state, const DataType& data) noexcept
     {
         const Index k = taken++;
-        time.mutable_data()[k] = start_time;
-        Eigen::Map<Vector3<double>>(position.mutable_data(k, 0)) = state.pose.position;
-        Eigen::Map<Vector4<double>>(orientation.mutable_data(k, 0)) = state.pose.orientation.coeffs();
-        Eigen::Map<Vector6<double>>(twist.mutable_data(k, 0)) = state.twist;
-        Eigen::Map<Vector6<double>>(object_acceleration.mutable_data(k, 0)) = data.object_acceleration();
-        Eigen::Map<Vector>(wrenches.mutable_data(k, 0), columns) = data.wrenches;
+        time_rows[k] = start_time;
+        Eigen::Map<Vector3<double>>(position_rows + 3 * k) = state.pose.position;
+        Eigen::Map<Vector4<double>>(orientation_rows + 4 * k) = state.pose.orientation.coeffs();
+        Eigen::Map<Vector6<double>>(twist_rows + 6 * k) = state.twist;
+        Eigen::Map<Vector6<double>>(acceleration_rows + 6 * k) = data.object_acceleration();
+        Eigen::Map<Vector>(wrench_rows + columns * k, columns) = data.wrenches;
     }
 
-    /// The rows taken, as new arrays (a run that stopped early returns fewer rows).
+    /// The arrays themselves when every step was taken; the rows taken, as new arrays, when the run
+    /// stopped early.
     py::dict result() const
     {
-        const py::slice rows(0, static_cast<py::ssize_t>(taken), 1);
         py::dict log;
-        log["time"] = time[rows].attr("copy")();
-        log["position"] = position[rows].attr("copy")();
-        log["orientation"] = orientation[rows].attr("copy")();
-        log["twist"] = twist[rows].attr("copy")();
-        log["object_acceleration"] = object_acceleration[rows].attr("copy")();
-        log["wrenches"] = wrenches[rows].attr("copy")();
+        const bool complete = taken == static_cast<Index>(time.shape(0));
+        const py::slice rows(0, static_cast<py::ssize_t>(taken), 1);
+        const auto rows_of = [&](const py::array_t<double>& array) -> py::object {
+            return complete ? py::object(array) : py::object(array[rows].attr("copy")());
+        };
+        log["time"] = rows_of(time);
+        log["position"] = rows_of(position);
+        log["orientation"] = rows_of(orientation);
+        log["twist"] = rows_of(twist);
+        log["object_acceleration"] = rows_of(object_acceleration);
+        log["wrenches"] = rows_of(wrenches);
         return log;
     }
 };
