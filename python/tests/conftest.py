@@ -10,6 +10,26 @@ def skew(v):
     return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
 
 
+def axis_angle(axis, angle):
+    """The rotation matrix of `angle` about the unit `axis` (Rodrigues)."""
+    k = skew(np.asarray(axis, dtype=float))
+    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * k @ k
+
+
+def quaternion_exp(v):
+    """[x, y, z, w] of the rotation by the vector v (angle |v|, docs/conventions.md's order)."""
+    angle = np.linalg.norm(v)
+    if angle == 0.0:
+        return np.array([0.0, 0.0, 0.0, 1.0])
+    return np.r_[np.sin(angle / 2) * v / angle, np.cos(angle / 2)]
+
+
+def quaternion_product(a, b):
+    """a (x) b, both [x, y, z, w]."""
+    va, wa, vb, wb = a[:3], a[3], b[:3], b[3]
+    return np.r_[wa * vb + wb * va + np.cross(va, vb), wa * wb - va @ vb]
+
+
 def grasp_block(r_i):
     """G_i = [[I, 0], [S(r_i), I]] of (24) (docs/model.md)."""
     g = np.eye(6)

@@ -9,21 +9,7 @@ import numpy as np
 import pytest
 
 import coopdyn
-from conftest import grasp_by_hand, grasp_block, block_diag
-
-
-def quaternion_exp(v):
-    """[x, y, z, w] of the rotation by the vector v (angle |v|)."""
-    angle = np.linalg.norm(v)
-    if angle == 0.0:
-        return np.array([0.0, 0.0, 0.0, 1.0])
-    return np.r_[np.sin(angle / 2) * v / angle, np.cos(angle / 2)]
-
-
-def quaternion_product(a, b):
-    """a (x) b, both [x, y, z, w]."""
-    va, wa, vb, wb = a[:3], a[3], b[:3], b[3]
-    return np.r_[wa * vb + wb * va + np.cross(va, vb), wa * wb - va @ vb]
+from conftest import block_diag, grasp_block, grasp_by_hand, quaternion_exp, quaternion_product
 
 
 def three_arms(rng, gravity=(0.0, 0.0, 0.0)):

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import coopdyn
+from conftest import axis_angle
 
 pytestmark = pytest.mark.skipif(not hasattr(coopdyn, "MujocoArms"), reason="coopdyn built without MuJoCo")
 
@@ -104,11 +105,6 @@ def rpy(r, p, y):
     ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
     rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
     return rz @ ry @ rx
-
-
-def axis_angle(axis, angle):
-    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]], dtype=float)
-    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * k @ k
 
 
 def test_contact_pose_is_the_urdfs_forward_kinematics():
