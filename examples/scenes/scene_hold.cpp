@@ -1,6 +1,8 @@
 // scene_hold: the hold experiment on one scene (docs/scenes.md), in MuJoCo, with a printed summary.
 //
-//     scene_hold examples/scenes/ur5e_panda.json [seconds] [mujoco|rigid]
+//     scene_hold examples/scenes/ur5e_panda.json [seconds] [mujoco|rigid|rigid-rk4]
+//
+// rigid: the rigid plant with its default integrator (semi-implicit Euler); rigid-rk4: with RK4.
 #include "scene_hold.hpp"
 #include "scene_rigid.hpp"
 
@@ -12,8 +14,9 @@
 
 int main(int argc, char** argv)
 {
-    if (argc < 2 || argc > 4 || (argc == 4 && std::string(argv[3]) != "mujoco" && std::string(argv[3]) != "rigid")) {
-        std::fprintf(stderr, "usage: scene_hold <scene.json> [seconds] [mujoco|rigid]\n");
+    const std::string plant_name = argc == 4 ? argv[3] : "mujoco";
+    if (argc < 2 || argc > 4 || (plant_name != "mujoco" && plant_name != "rigid" && plant_name != "rigid-rk4")) {
+        std::fprintf(stderr, "usage: scene_hold <scene.json> [seconds] [mujoco|rigid|rigid-rk4]\n");
         return 2;
     }
     try {
@@ -35,10 +38,10 @@ int main(int argc, char** argv)
         if (argc >= 3) {
             settings.seconds = std::atof(argv[2]);
         }
-        const bool rigid = argc == 4 && std::string(argv[3]) == "rigid";
         scenes::HoldResult hold;
-        if (rigid) {
-            scenes::RigidScenePlant plant(world);
+        if (plant_name != "mujoco") {
+            scenes::RigidScenePlant plant(world, plant_name == "rigid" ? scenes::RigidIntegrator::semi_implicit_euler
+                                                                       : scenes::RigidIntegrator::rk4);
             hold = scenes::run_hold_on(world, plant, settings);
             const std::array<double, 2> weld = plant.weld_error();
             std::printf("rigid plant: weld error at the end %.3g m, %.3g rad\n", weld[0], weld[1]);

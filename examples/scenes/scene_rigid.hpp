@@ -1,10 +1,11 @@
 // The rigid-grasp plant of any scene (docs/scenes.md, "The rigid plant"): the scene's arms with each
 // palm welded to the object where it touches it at the start, the object with its true mass and
 // inertia (the MJCF's), solved exactly by coopdyn::JointSpaceGrasp (Gauss's principle through the
-// structured kernel, docs/dynamics.md "Arms in joint space") and integrated with RK4 at the
-// model's timestep. The dual-arm box's rigid plant (examples/box/rigid_plant.hpp) for any K and
-// arms of any joint counts; the arms' M, h, J, Jdot qdot come from MuJoCo through the adapter
-// (MujocoArms::read on a scratch mjData at each RK4 stage), not from an own recursion.
+// structured kernel, docs/dynamics.md "Arms in joint space") and integrated at the model's
+// timestep by semi-implicit Euler (the default, MuJoCo's own integrator) or RK4. The dual-arm
+// box's rigid plant (examples/box/rigid_plant.hpp) for any K and arms of any joint counts; the
+// arms' M, h, J, Jdot qdot come from MuJoCo through the adapter (MujocoArms::read on a scratch
+// mjData), not from an own recursion.
 //
 // Coordinates: the arms' q (Q), the object's centre of mass p and orientation (its body frame),
 // qdot, the centre's velocity v and the angular velocity w ({w}). Unconstrained dynamics
@@ -15,11 +16,14 @@
 // Needs arms that share no joint, their joints contiguous in q and in the contacts' order (checked
 // at construction): JointSpaceGrasp works arm by arm. The RK4 stages' vectors are sized at
 // construction (the simulated world is not a per-tick path: only the controller's tick is proven
-// not to allocate, docs/conventions.md). Each step runs
-// MuJoCo's smooth stages (kinematics, M, velocities, h; no collision, no constraint solver) four
-// times; the hold's real-time factor is 20-33 on the shipped scenes (CPU time, docs/performance.md,
-// "Scenes of any arms"; 5-8 with the four mj_forward calls it made before). This header belongs to
-// the examples.
+// not to allocate, docs/conventions.md). Each evaluation runs MuJoCo's smooth stages (kinematics,
+// M, velocities, h; no collision, no constraint solver). Semi-implicit Euler evaluates once per
+// step, at the step's start, which is the evaluation begin_tick made for the controller's input:
+// the hold runs at 74-76x real time on the pairs and 43x with three arms (CPU time,
+// docs/performance.md, "Scenes of any arms"); RK4 evaluates four times (30-33x and 20x). Euler's
+// error is first order (the object's excursion differs from RK4's by 4-34 um over 0.5 s at 1 ms,
+// halving with the step; its weld error is under 1 um where RK4's is 1e-15 m: test_scenes). This
+// header belongs to the examples.
 #pragma once
 
 #include "scene_world.hpp"
@@ -32,6 +36,17 @@
 
 namespace scenes {
 
+/// How RigidScenePlant advances one step (docs/scenes.md, "The rigid plant").
+enum class RigidIntegrator {
+    /// Semi-implicit (symplectic) Euler, MuJoCo's own integrator: the velocities from the weld's
+    /// accelerations at the step's start, then the positions from the new velocities. One
+    /// evaluation of the arms' terms per step, the one the controller's input was read from.
+    semi_implicit_euler,
+    /// Classical Runge-Kutta of order 4: four evaluations per step; the reference the first is
+    /// checked against (test_scenes, "RigidPlantIntegrators").
+    rk4,
+};
+
 class RigidScenePlant {
 public:
     using Index = Eigen::Index;
@@ -40,8 +55,10 @@ public:
 
     /// Welds each palm to the object where the world's current state (after world.start()) has
     /// them. `stabilisation_frequency` (rad/s): the Baumgarte terms, critically damped.
-    explicit RigidScenePlant(const SceneWorld& world, double stabilisation_frequency = 50.0)
+    explicit RigidScenePlant(const SceneWorld& world, RigidIntegrator integrator = RigidIntegrator::semi_implicit_euler,
+                             double stabilisation_frequency = 50.0)
         : world_(world),
+          integrator_(integrator),
           scratch_(mj_makeData(world.model())),
           grasp_(arm_joint_counts(world)),
           stiffness_(stabilisation_frequency * stabilisation_frequency),
@@ -110,14 +127,19 @@ public:
     }
     coopdyn::Pose<double> contact_pose(Index i) const { return world_.arms().contact_pose(scratch_.get(), i); }
 
-    /// One RK4 step under tau (held over the step); the palms' wrenches are those at the step's
-    /// start (the state the controller saw).
+    /// One step under tau (held over the step), by the plant's integrator; the palms' wrenches are
+    /// those at the step's start (the state the controller saw). Needs begin_tick() at the current
+    /// state first (its evaluation of the arms' terms is the step's first).
     void end_tick(const Eigen::VectorXd& tau) { end_tick(tau, Vector6::Zero()); }
     /// The same with a wrench [F; T] ({w}) on the object's centre of mass, held over the step (a
     /// person's push; the box experiments, examples/box/scene_box.hpp).
     void end_tick(const Eigen::VectorXd& tau, const Vector6& object_wrench)
     {
         object_wrench_ = object_wrench;
+        if (integrator_ == RigidIntegrator::semi_implicit_euler) {
+            euler_step(tau);
+            return;
+        }
         const double dt = period();
         const std::array<double, 4> fraction{0.0, 0.5, 0.5, 1.0};
         stage_position_ = state_;
@@ -280,6 +302,21 @@ private:
         }
     }
 
+    /// Semi-implicit Euler: qdot, v, w from the accelerations at the step's start (the terms
+    /// begin_tick evaluated), then q, p from the new velocities and the orientation by the exact
+    /// rotation of the new w over the step.
+    void euler_step(const Eigen::VectorXd& tau)
+    {
+        const double dt = period();
+        const Index joints = world_.arms().joints();
+        solve(state_, velocity_, tau, /*keep=*/true);
+        velocity_ += dt * stage_acceleration_;
+        state_.head(joints + 3) += dt * velocity_.head(joints + 3);
+        const Eigen::Quaterniond orientation(state_.segment<4>(joints + 3));
+        const Eigen::Vector3d rotation = dt * velocity_.tail<3>();
+        state_.segment<4>(joints + 3) = (coopdyn::quaternion_exp(rotation) * orientation).normalized().coeffs();
+    }
+
     /// d/dt of [q; p; quaternion coeffs (x, y, z, w)], into rate (sized joints + 7).
     void rate_of_position(const Eigen::VectorXd& position, const Eigen::VectorXd& velocity, Eigen::VectorXd& rate) const noexcept
     {
@@ -300,6 +337,7 @@ private:
     }
 
     const SceneWorld& world_;
+    RigidIntegrator integrator_;
     DataPointer scratch_;
     coopdyn::JointSpaceGrasp<double> grasp_;
     double stiffness_;

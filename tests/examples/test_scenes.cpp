@@ -100,10 +100,15 @@ TEST_P(ShippedScene, HoldsTheObjectInMujoco)
 }
 
 // The same hold on the rigid-grasp plant (scene_rigid.hpp: the palms welded where they touch, the
-// object's true inertia): the weld holds to rounding, every tick ok, the welds' normal forces at
-// the QP's; and the object settles where MuJoCo's does (the same controller; the object's largest
-// excursion over 1 s, about 65-74 mm of sag under its unknown weight, agrees to 0.02, 0.06 and
-// 0.11 mm on the three scenes: MuJoCo's soft contacts against the welds).
+// object's true inertia), with its default integrator (semi-implicit Euler): the weld holds (its
+// error is the integrator's first-order drift, which the Baumgarte terms pull back, the order test
+// below: under 1 um and 1 urad, a thousandth of the 1 mm slip bound and a tenth of the least slip
+// MuJoCo's soft contacts show; measured 0.03-0.08 um after 1 s, 0.2-0.4 um while the object
+// settles, below), every tick ok, the
+// welds' normal forces at the QP's; and the object settles where MuJoCo's does (the same
+// controller; the object's largest excursion over 1 s, about 65-74 mm of sag under its unknown
+// weight, agrees to 0.02, 0.06 and 0.11 mm on the three scenes: MuJoCo's soft contacts against the
+// welds).
 TEST_P(ShippedScene, HoldsTheObjectOnTheRigidPlant)
 {
     scenes::SceneWorld world(scenes::read_scene(path()));
@@ -116,8 +121,8 @@ TEST_P(ShippedScene, HoldsTheObjectOnTheRigidPlant)
     EXPECT_FALSE(hold.dropped);
     EXPECT_EQ(hold.ticks, 1000);
     EXPECT_EQ(hold.not_ok_ticks, 0);
-    EXPECT_LT(weld[0], 1e-12);
-    EXPECT_LT(weld[1], 1e-12);
+    EXPECT_LT(weld[0], 1e-6);
+    EXPECT_LT(weld[1], 1e-6);
     for (std::size_t i = 0; i < hold.palms.size(); ++i) {
         const scenes::PalmHold& palm = hold.palms[i];
         EXPECT_NEAR(palm.final_normal_force, palm.predicted_normal_force, 1e-3 * palm.predicted_normal_force) << "palm " << i;
@@ -128,6 +133,48 @@ TEST_P(ShippedScene, HoldsTheObjectOnTheRigidPlant)
                 GetParam(), hold.real_time_factor, weld[0], weld[1], 1e3 * hold.max_position_error,
                 1e3 * mujoco.max_position_error);
     EXPECT_NEAR(hold.max_position_error, mujoco.max_position_error, 3e-4);
+}
+
+// The rigid plant's two integrators (scene_rigid.hpp, RigidIntegrator) on the same 0.5 s hold, at
+// the model's 1 ms and at 0.5 ms (the controller ticking at the plant's period): RK4 keeps the weld
+// to rounding (1e-12), and semi-implicit Euler converges to RK4 at first order, its difference in
+// the object's largest excursion halving with the step (ratio 1.5-2.5; RK4's own error, O(dt^4), is
+// far below it), and so does its weld error, at least. A wrong rate or a stale evaluation in either
+// would break the ratios.
+TEST_P(ShippedScene, RigidPlantIntegratorsConvergeToEachOther)
+{
+    std::array<double, 2> difference{};
+    std::array<double, 2> euler_weld{};
+    for (std::size_t halvings = 0; halvings < 2; ++halvings) {
+        std::array<scenes::HoldResult, 2> holds;
+        for (const scenes::RigidIntegrator integrator : {scenes::RigidIntegrator::semi_implicit_euler,
+                                                         scenes::RigidIntegrator::rk4}) {
+            scenes::SceneWorld world(scenes::read_scene(path()));
+            world.model()->opt.timestep = halvings == 0 ? 1e-3 : 5e-4;
+            world.start();
+            scenes::HoldSettings settings;
+            settings.seconds = 0.5;
+            scenes::RigidScenePlant plant(world, integrator);
+            const auto index = integrator == scenes::RigidIntegrator::rk4 ? 1U : 0U;
+            holds[index] = scenes::run_hold_on(world, plant, settings);
+            EXPECT_EQ(holds[index].not_ok_ticks, 0);
+            const std::array<double, 2> weld = plant.weld_error();
+            if (integrator == scenes::RigidIntegrator::rk4) {
+                EXPECT_LT(weld[0], 1e-12);
+                EXPECT_LT(weld[1], 1e-12);
+            } else {
+                euler_weld[halvings] = weld[0];
+            }
+        }
+        difference[halvings] = std::abs(holds[0].max_position_error - holds[1].max_position_error) +
+                               std::abs(holds[0].max_orientation_error - holds[1].max_orientation_error) * 0.1;
+    }
+    std::printf("%s: Euler against RK4, the object's excursion: %.3g at 1 ms, %.3g at 0.5 ms (ratio %.2f); Euler's weld "
+                "error %.3g, %.3g m (ratio %.2f)\n", GetParam(), difference[0], difference[1], difference[0] / difference[1],
+                euler_weld[0], euler_weld[1], euler_weld[0] / euler_weld[1]);
+    EXPECT_GT(difference[0] / difference[1], 1.5);
+    EXPECT_LT(difference[0] / difference[1], 2.5);
+    EXPECT_GT(euler_weld[0] / euler_weld[1], 1.5);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::Values("lwr4_pair", "ur5e_panda", "three_arms"));
