@@ -128,6 +128,14 @@ struct FrictionRows {
 /// allocates nothing, as with the LWR 4 pair's fixed sizes. The shipped scenes have K <= 3, Q <= 20.
 constexpr int max_scene_palms = 4;
 constexpr int max_scene_joints = 32;
+/// The one scene size whose experiments run the controller at fixed sizes (box_runs.cpp,
+/// run_scene_world): three arms (K = 3, Q = 20), whose Dynamic-size tick (14.5-17 us) held the rigid
+/// plant's experiments under 50x real time; at fixed sizes it costs 10.7-11.4 us
+/// (docs/performance.md, "Scenes of any arms"). Every other scene runs it at Dynamic sizes; another
+/// size costs its own controller_tick and two experiment loops in box_runs.cpp (about 70 s of g++
+/// -O3 CPU: docs/performance.md).
+constexpr int fixed_scene_palms = 3;
+constexpr int fixed_scene_joints = 20;
 /// Palm slots of a run with K palms (K, or max_scene_palms for Eigen::Dynamic).
 template <int K>
 constexpr std::size_t palm_capacity = K == Eigen::Dynamic ? std::size_t{max_scene_palms} : std::size_t(K);
@@ -333,14 +341,17 @@ template <typename Plant> void apply_added_mass(Plant& plant, const BoxScenario&
 /// box_orientation(), box_twist(), box_acceleration(); end_tick(tau, wrench on the box's centre);
 /// measured_contact_wrench(i); box_mass(), set_box_mass(m).
 /// `faults` (NoFaults by default; docs/faults.md) corrupts each tick's input and torque.
-template <int K, int Q, typename Plant, typename Faults = NoFaults>
+/// `ControllerK`, `ControllerQ`: the controller's sizes, K and Q by default; a scene's run (K, Q
+/// Dynamic) may run it at the scene's fixed sizes (box_runs.cpp, run_scene_world), the log staying
+/// Dynamic.
+template <int K, int Q, typename Plant, typename Faults = NoFaults, int ControllerK = K, int ControllerQ = Q>
 ExperimentRunOf<K, Q> run_experiment_on(Plant& plant, const BoxScenario& scenario, const ExperimentSetup& setup,
                                         unsigned long long seed = 1, const std::function<void(double)>& progress = {},
                                         Faults&& faults = Faults{})
 {
-    const coopdyn::ControllerModel<double, K, Q> controller(setup.parameters);
-    coopdyn::ControllerData<double, K, Q> data(controller);
-    coopdyn::ControllerInput<double, K, Q> input(controller);
+    const coopdyn::ControllerModel<double, ControllerK, ControllerQ> controller(setup.parameters);
+    coopdyn::ControllerData<double, ControllerK, ControllerQ> data(controller);
+    coopdyn::ControllerInput<double, ControllerK, ControllerQ> input(controller);
     input.posture = setup.posture;
     const FrictionRows friction(true_friction(scenario.plant_friction, scenario.controller.patch_half_size));
     const Eigen::Matrix<double, Q, 1> limit = setup.torque_limit;

@@ -38,9 +38,14 @@ Lwr4Run run_lwr4_world(const std::string& mjcf, const BoxScenario& scenario, boo
     return result;
 }
 
-DynamicRun run_scene_world(const scenes::Scene& scene, const BoxScenario& scenario, bool rigid, unsigned long long seed)
+DynamicRun run_scene_world(const scenes::Scene& scene, const BoxScenario& scenario, bool rigid, unsigned long long seed,
+                           const ExperimentProgress& progress, scenes::RigidIntegrator integrator)
 {
-    return run_scene_experiment(scene, scenario, rigid, seed);
+    if (fixed_size_scene(scene)) {
+        return run_scene_experiment<fixed_scene_palms, fixed_scene_joints>(scene, scenario, rigid, seed, progress,
+                                                                           integrator);
+    }
+    return run_scene_experiment(scene, scenario, rigid, seed, progress, integrator);
 }
 
 }  // namespace box_example

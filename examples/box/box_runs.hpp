@@ -12,6 +12,8 @@
 #include "box_experiment.hpp"
 #include "box_report.hpp"
 
+#include "../scenes/rigid_integrator.hpp"
+
 #include <functional>
 #include <optional>
 #include <string>
@@ -57,8 +59,11 @@ struct Lwr4Run {
 /// plants' headers (the Python module): compiled in box_runs.cpp.
 Lwr4Run run_lwr4_world(const std::string& mjcf, const BoxScenario& scenario, bool rigid, unsigned long long seed,
                        bool measure_squeeze);
-/// scene_box.hpp's run_scene_experiment, compiled in box_runs.cpp.
-DynamicRun run_scene_world(const scenes::Scene& scene, const BoxScenario& scenario, bool rigid,
-                           unsigned long long seed);
+/// scene_box.hpp's run_scene_experiment, compiled in box_runs.cpp: the controller at fixed sizes
+/// for the three-arm scene's (box_experiment.hpp, fixed_scene_palms), at Dynamic sizes otherwise;
+/// the rigid plant integrated by `integrator`.
+DynamicRun run_scene_world(const scenes::Scene& scene, const BoxScenario& scenario, bool rigid, unsigned long long seed,
+                           const ExperimentProgress& progress = {},
+                           scenes::RigidIntegrator integrator = scenes::RigidIntegrator::semi_implicit_euler);
 
 }  // namespace box_example

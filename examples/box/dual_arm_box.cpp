@@ -13,7 +13,7 @@
 #include "box_scenario_loader.hpp"
 #include "lwr4_run.hpp"
 #include "minimum_squeeze.hpp"
-#include "scene_box.hpp"
+#include "../scenes/scene.hpp"
 
 #include "../common/cli.hpp"
 #include "../common/files.hpp"
@@ -56,6 +56,7 @@ struct CommandLine {
     std::vector<std::string> experiments{"all"};
     std::vector<std::string> scenarios;  ///< files; empty: the shipped ones of `experiments`
     std::string plant = "mujoco";
+    std::string rigid_integrator = "euler";
     std::string scene = "lwr4_pair";  ///< whose shipped scenarios --experiment picks
     double duration = 0.0;  ///< 0: each scenario's
     double friction = 0.0;  ///< 0: each scenario's controller friction
@@ -137,8 +138,8 @@ void run_lwr4(const BoxScenario& scenario, const CommandLine& command, std::uniq
     }
 }
 
-/// A scenario on its scene (scene_box.hpp), at dynamic sizes, on the plants asked for. The
-/// minimum squeeze is measured on the LWR 4 pair only.
+/// A scenario on its scene (scene_box.hpp's run, compiled in box_runs.cpp: run_scene_world), on the
+/// plants asked for. The minimum squeeze is measured on the LWR 4 pair only.
 void run_scene(const BoxScenario& scenario, const scenes::Scene& scene, const CommandLine& command, Runs& runs)
 {
     for (const char* plant_name : {"mujoco", "rigid"}) {
@@ -146,8 +147,10 @@ void run_scene(const BoxScenario& scenario, const scenes::Scene& scene, const Co
             continue;
         }
         const std::string label = scenario.name + " (" + plant_name + ")";
-        const SceneRun run = run_scene_experiment(scene, scenario, std::string(plant_name) == "rigid", command.seed,
-                                                  [&](double fraction) { runs.progress.update(label, fraction); });
+        const DynamicRun run = run_scene_world(
+            scene, scenario, std::string(plant_name) == "rigid", command.seed,
+            [&](double fraction) { runs.progress.update(label, fraction); },
+            command.rigid_integrator == "rk4" ? scenes::RigidIntegrator::rk4 : scenes::RigidIntegrator::semi_implicit_euler);
         runs.progress.finish();
         runs.summaries.emplace_back(scenario, report_one(run, scenario, plant_name, command, runs.plots));
     }
@@ -253,6 +256,12 @@ void add_options(CLI::App& app, CommandLine& command, NegativeFlags& flags)
     app.add_option("--plant", command.plant, "mujoco (friction contact), rigid (welded palms) or both")
         ->check(CLI::IsMember({"mujoco", "rigid", "both"}))
         ->type_name("PLANT");
+    app.add_option("--rigid-integrator", command.rigid_integrator,
+                   "A scene's rigid plant: euler (semi-implicit, one evaluation per step) or rk4 (four; docs/scenes.md, "
+                   "\"The rigid plant\"); the LWR 4 pair's own rigid plant integrates by RK4")
+        ->check(CLI::IsMember({"euler", "rk4"}))
+        ->capture_default_str()
+        ->type_name("INTEGRATOR");
     app.add_option("--duration", command.duration,
                    "Simulated seconds per experiment (default: the scenario's; at least 1 s, the table's rest window "
                    "is 0.8 s)")

@@ -161,25 +161,37 @@ inline void set_palm_friction(scenes::SceneWorld& world, const PlantFriction& fr
 
 using SceneRun = ExperimentRunOf<Eigen::Dynamic, Eigen::Dynamic>;
 
-/// Runs `scenario` on its scene (scenario.scene) on one plant, "mujoco" or "rigid", from the
-/// scene's start (a world of its own: the IK or the given posture).
-inline SceneRun run_scene_experiment(const scenes::Scene& scene, const BoxScenario& scenario, bool rigid,
-                                     unsigned long long seed = 1, const std::function<void(double)>& progress = {})
+/// Whether a scene's experiments run the controller at fixed sizes (box_experiment.hpp,
+/// fixed_scene_palms and fixed_scene_joints; box_runs.cpp's run_scene_world dispatches).
+inline bool fixed_size_scene(const scenes::Scene& scene) noexcept
+{
+    return scene.arms() == fixed_scene_palms && scene.joints() == fixed_scene_joints;
+}
+
+/// Runs `scenario` on its scene (scenario.scene) on one plant, "mujoco" or "rigid" (integrated by
+/// `integrator`), from the scene's start (a world of its own: the IK or the given posture), the
+/// controller at sizes ControllerK, ControllerQ (Dynamic by default; the scene's own otherwise).
+template <int ControllerK = Eigen::Dynamic, int ControllerQ = Eigen::Dynamic>
+SceneRun run_scene_experiment(const scenes::Scene& scene, const BoxScenario& scenario, bool rigid,
+                              unsigned long long seed = 1, const std::function<void(double)>& progress = {},
+                              scenes::RigidIntegrator integrator = scenes::RigidIntegrator::semi_implicit_euler)
 {
     scenes::SceneWorld world(scene);
     world.start();
     const ExperimentSetup setup = make_scene_setup(world, scenario);
     if (rigid) {
-        scenes::RigidScenePlant plant(world);
+        scenes::RigidScenePlant plant(world, integrator);
         plant.set_object_mass(scenario.box_mass);
         SceneBoxPlant<scenes::RigidScenePlant> box_plant(world, plant);
-        return run_experiment_on<Eigen::Dynamic, Eigen::Dynamic>(box_plant, scenario, setup, seed, progress);
+        return run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, SceneBoxPlant<scenes::RigidScenePlant>, NoFaults,
+                                 ControllerK, ControllerQ>(box_plant, scenario, setup, seed, progress);
     }
     set_palm_friction(world, scenario.plant_friction);
     scenes::MujocoScenePlant plant(world);
     plant.set_object_mass(scenario.box_mass);
     SceneBoxPlant<scenes::MujocoScenePlant> box_plant(world, plant);
-    return run_experiment_on<Eigen::Dynamic, Eigen::Dynamic>(box_plant, scenario, setup, seed, progress);
+    return run_experiment_on<Eigen::Dynamic, Eigen::Dynamic, SceneBoxPlant<scenes::MujocoScenePlant>, NoFaults, ControllerK,
+                             ControllerQ>(box_plant, scenario, setup, seed, progress);
 }
 
 }  // namespace box_example

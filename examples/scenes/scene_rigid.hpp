@@ -26,6 +26,7 @@
 // header belongs to the examples.
 #pragma once
 
+#include "rigid_integrator.hpp"
 #include "scene_world.hpp"
 
 #include <coopdyn/dynamics/joint_space_grasp.hpp>
@@ -35,17 +36,6 @@
 #include <vector>
 
 namespace scenes {
-
-/// How RigidScenePlant advances one step (docs/scenes.md, "The rigid plant").
-enum class RigidIntegrator {
-    /// Semi-implicit (symplectic) Euler, MuJoCo's own integrator: the velocities from the weld's
-    /// accelerations at the step's start, then the positions from the new velocities. One
-    /// evaluation of the arms' terms per step, the one the controller's input was read from.
-    semi_implicit_euler,
-    /// Classical Runge-Kutta of order 4: four evaluations per step; the reference the first is
-    /// checked against (test_scenes, "RigidPlantIntegrators").
-    rk4,
-};
 
 class RigidScenePlant {
 public:

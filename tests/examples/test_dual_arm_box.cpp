@@ -326,8 +326,9 @@ TEST_F(DualArmBoxScene, ThreeArmsHoldTheBoxInEveryExperimentOnBothPlants)
 // The LWR 4 pair as a scene (examples/scenes/lwr4_pair.json, the same MJCF and start posture):
 // the scenario naming it runs at dynamic sizes through the MuJoCo adapter (MujocoArms) and, on
 // the rigid plant, the scene's weld on MuJoCo's arm dynamics instead of lwr4_dynamics.hpp's
-// recursion. Both are the same physics, so the logs agree with the fixed-size run's to the
-// solvers' rounding (the CSV's 10 digits: measured within 1e-7 N).
+// recursion. Both are the same physics and, with the scene's rigid plant on RK4 as the LWR 4
+// pair's (--rigid-integrator rk4), the same integrator, so the logs agree with the fixed-size
+// run's to the solvers' rounding (the CSV's 10 digits: measured within 1e-7 N).
 TEST(DualArmBoxInput, TheLwr4PairSceneGivesTheFixedSizeRun)
 {
     const fs::path directory = example_tests::fresh_directory(output_root, "lwr4_pair_scene");
@@ -338,7 +339,8 @@ TEST(DualArmBoxInput, TheLwr4PairSceneGivesTheFixedSizeRun)
         ASSERT_TRUE(example_tests::write_edited(text, "\"name\": \"" + std::string(name) + "\"", edited,
                                                 directory / (std::string(name) + "_scene.json")));
     }
-    const std::string common = " --plant both --duration 2.5 --no-plots --quiet --no-minimum-squeeze --output out";
+    const std::string common =
+        " --plant both --rigid-integrator rk4 --duration 2.5 --no-plots --quiet --no-minimum-squeeze --output out";
     const ProgramRun scene = example_tests::run_program(
         program, directory, "--scenario push_scene.json --scenario add_mass_scene.json" + common);
     ASSERT_EQ(scene.exit_code, 0) << scene.output;

@@ -4,6 +4,9 @@
 // URDF compilation), and a short hold in MuJoCo keeps the object with no slip and every QP tick
 // feasible. The scene reader refuses malformed files naming the field.
 #include "../box/scene_box.hpp"
+#ifdef COOPDYN_HAVE_BOX_RUNS
+#include "../box/box_runs.hpp"  // run_scene_world, compiled in box_example_runs
+#endif
 #include "scene_hold.hpp"
 #include "scene_rigid.hpp"
 
@@ -670,5 +673,46 @@ TEST(SceneBoxPlants, MeasuredPalmWrenchesGiveTheObjectsAcceleration)
                     rigid ? "rigid" : "MuJoCo", worst);
     }
 }
+
+#ifdef COOPDYN_HAVE_BOX_RUNS
+// The box program's three-arm runs (box_runs.cpp, run_scene_world) tick the controller at the
+// scene's fixed sizes (K = 3, Q = 20; box_experiment.hpp, fixed_scene_palms); scene_box.hpp's
+// run_scene_experiment at Dynamic sizes. Same controller, other instantiation: over 1.5 s of the
+// push, on both plants, every logged torque, contact wrench and box position agrees to the
+// solvers' rounding (relative 1e-9; measured below), and the QP takes the same steps.
+TEST(SceneBoxPlants, TheFixedSizeThreeArmRunIsTheDynamicOne)
+{
+    const scenes::Scene scene = scenes::read_scene(scene_dir + "/three_arms.json");
+    ASSERT_TRUE(box_example::fixed_size_scene(scene));
+    box_example::BoxScenario scenario;
+    scenario.duration = 1.5;
+    scenario.box_mass = 0.8;
+    scenario.controller.minimum_normal_force = 30.0;
+    scenario.push = box_example::Push{};
+    scenario.push->start = 0.2;
+    scenario.push->force = 20.0;
+    for (const bool rigid : {false, true}) {
+        const box_example::SceneRun fixed = box_example::run_scene_world(scene, scenario, rigid, 1);
+        const box_example::SceneRun dynamic = box_example::run_scene_experiment(scene, scenario, rigid, 1);
+        ASSERT_EQ(fixed.log.size(), dynamic.log.size());
+        double worst = 0.0;
+        for (std::size_t row = 0; row < fixed.log.size(); ++row) {
+            const auto& a = fixed.log[row];
+            const auto& b = dynamic.log[row];
+            EXPECT_EQ(a.qp_iterations, b.qp_iterations) << row;
+            worst = std::max(worst, (a.box_position - b.box_position).norm());
+            worst = std::max(worst, (a.motion_torque + a.squeeze_torque - b.motion_torque - b.squeeze_torque).norm() /
+                                        (b.motion_torque + b.squeeze_torque).norm());
+            for (std::size_t i = 0; i < 3; ++i) {
+                worst = std::max(worst, (a.predicted[i] - b.predicted[i]).norm() / b.predicted[i].norm());
+                worst = std::max(worst, (a.measured[i] - b.measured[i]).norm() / b.measured[i].norm());
+            }
+        }
+        std::printf("%s plant: the fixed-size three-arm run against the Dynamic one: %.2g\n", rigid ? "rigid" : "MuJoCo",
+                    worst);
+        EXPECT_LT(worst, 1e-9) << rigid;
+    }
+}
+#endif
 
 }  // namespace
