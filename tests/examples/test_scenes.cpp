@@ -642,11 +642,11 @@ TEST(LeastSqueezeAtRest, NormalForcesPerSceneAndObjective)
 // solver's (mj_contactForce) and the acceleration its qacc; on the rigid plant the weld's
 // constraint wrenches and the solve's acceleration. A wrong sign, frame or palm in the measured
 // wrenches, a push or mass not applied, breaks it by newtons.
-TEST(SceneBoxPlants, MeasuredPalmWrenchesGiveTheObjectsAcceleration)
+// The three-arm scene's box, pushed 20 N down from 0.2 s (ramp and hold 0.2 s each).
+box_example::BoxScenario pushed_three_arm_box(double duration)
 {
-    const scenes::Scene scene = scenes::read_scene(scene_dir + "/three_arms.json");
     box_example::BoxScenario scenario;
-    scenario.duration = 1.0;
+    scenario.duration = duration;
     scenario.box_mass = 0.8;
     scenario.controller.minimum_normal_force = 30.0;
     scenario.push = box_example::Push{};
@@ -654,6 +654,13 @@ TEST(SceneBoxPlants, MeasuredPalmWrenchesGiveTheObjectsAcceleration)
     scenario.push->force = 20.0;
     scenario.push->ramp = 0.2;
     scenario.push->hold = 0.2;
+    return scenario;
+}
+
+TEST(SceneBoxPlants, MeasuredPalmWrenchesGiveTheObjectsAcceleration)
+{
+    const scenes::Scene scene = scenes::read_scene(scene_dir + "/three_arms.json");
+    box_example::BoxScenario scenario = pushed_three_arm_box(1.0);
     scenario.added_mass = box_example::AddedMass{0.5, 0.25, 2.0, 0.25};
     for (const bool rigid : {false, true}) {
         const box_example::SceneRun run = box_example::run_scene_experiment(scene, scenario, rigid);
@@ -684,13 +691,7 @@ TEST(SceneBoxPlants, TheFixedSizeThreeArmRunIsTheDynamicOne)
 {
     const scenes::Scene scene = scenes::read_scene(scene_dir + "/three_arms.json");
     ASSERT_TRUE(box_example::fixed_size_scene(scene));
-    box_example::BoxScenario scenario;
-    scenario.duration = 1.5;
-    scenario.box_mass = 0.8;
-    scenario.controller.minimum_normal_force = 30.0;
-    scenario.push = box_example::Push{};
-    scenario.push->start = 0.2;
-    scenario.push->force = 20.0;
+    const box_example::BoxScenario scenario = pushed_three_arm_box(1.5);
     for (const bool rigid : {false, true}) {
         const box_example::SceneRun fixed = box_example::run_scene_world(scene, scenario, rigid, 1);
         const box_example::SceneRun dynamic = box_example::run_scene_experiment(scene, scenario, rigid, 1);
