@@ -39,7 +39,7 @@ Lwr4Run run_lwr4_world(const std::string& mjcf, const BoxScenario& scenario, boo
 }
 
 DynamicRun run_scene_world(const scenes::Scene& scene, const BoxScenario& scenario, bool rigid, unsigned long long seed,
-                           const ExperimentProgress& progress, scenes::RigidIntegrator integrator)
+                           const ExperimentProgress& progress, coopdyn::Integrator integrator)
 {
     if (fixed_size_scene(scene)) {
         return run_scene_experiment<fixed_scene_palms, fixed_scene_joints>(scene, scenario, rigid, seed, progress,

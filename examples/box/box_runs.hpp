@@ -12,7 +12,7 @@
 #include "box_experiment.hpp"
 #include "box_report.hpp"
 
-#include "../scenes/rigid_integrator.hpp"
+#include <coopdyn/dynamics/integrator.hpp>
 
 #include <functional>
 #include <optional>
@@ -64,6 +64,6 @@ Lwr4Run run_lwr4_world(const std::string& mjcf, const BoxScenario& scenario, boo
 /// the rigid plant integrated by `integrator`.
 DynamicRun run_scene_world(const scenes::Scene& scene, const BoxScenario& scenario, bool rigid, unsigned long long seed,
                            const ExperimentProgress& progress = {},
-                           scenes::RigidIntegrator integrator = scenes::RigidIntegrator::semi_implicit_euler);
+                           coopdyn::Integrator integrator = coopdyn::Integrator::semi_implicit_euler);
 
 }  // namespace box_example

@@ -150,7 +150,7 @@ void run_scene(const BoxScenario& scenario, const scenes::Scene& scene, const Co
         const DynamicRun run = run_scene_world(
             scene, scenario, std::string(plant_name) == "rigid", command.seed,
             [&](double fraction) { runs.progress.update(label, fraction); },
-            command.rigid_integrator == "rk4" ? scenes::RigidIntegrator::rk4 : scenes::RigidIntegrator::semi_implicit_euler);
+            command.rigid_integrator == "rk4" ? coopdyn::Integrator::runge_kutta_4 : coopdyn::Integrator::semi_implicit_euler);
         runs.progress.finish();
         runs.summaries.emplace_back(scenario, report_one(run, scenario, plant_name, command, runs.plots));
     }

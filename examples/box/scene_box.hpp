@@ -174,7 +174,7 @@ inline bool fixed_size_scene(const scenes::Scene& scene) noexcept
 template <int ControllerK = Eigen::Dynamic, int ControllerQ = Eigen::Dynamic>
 SceneRun run_scene_experiment(const scenes::Scene& scene, const BoxScenario& scenario, bool rigid,
                               unsigned long long seed = 1, const std::function<void(double)>& progress = {},
-                              scenes::RigidIntegrator integrator = scenes::RigidIntegrator::semi_implicit_euler)
+                              coopdyn::Integrator integrator = coopdyn::Integrator::semi_implicit_euler)
 {
     scenes::SceneWorld world(scene);
     world.start();

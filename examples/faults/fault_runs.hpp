@@ -71,7 +71,7 @@ inline box_example::SceneRun run_with_hook(const scenes::Scene& scene, const box
         // torque limits and the welds to reactions of kilonewtons, where Euler's weld drift is no
         // longer negligible (45 mm in torque_limits_90pct on the LWR 4 pair; docs/scenes.md, "The
         // rigid plant"); RK4 keeps the weld to rounding.
-        scenes::RigidScenePlant plant(*world, scenes::RigidIntegrator::rk4);
+        scenes::RigidScenePlant plant(*world, coopdyn::Integrator::runge_kutta_4);
         plant.set_object_mass(scenario.box_mass);
         box_example::SceneBoxPlant<scenes::RigidScenePlant> box_plant(*world, plant);
         return box_example::run_experiment_on<Eigen::Dynamic, Eigen::Dynamic>(box_plant, scenario, setup, 1, {}, hook);

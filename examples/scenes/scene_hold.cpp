@@ -40,8 +40,8 @@ int main(int argc, char** argv)
         }
         scenes::HoldResult hold;
         if (plant_name != "mujoco") {
-            scenes::RigidScenePlant plant(world, plant_name == "rigid" ? scenes::RigidIntegrator::semi_implicit_euler
-                                                                       : scenes::RigidIntegrator::rk4);
+            scenes::RigidScenePlant plant(world, plant_name == "rigid" ? coopdyn::Integrator::semi_implicit_euler
+                                                                       : coopdyn::Integrator::runge_kutta_4);
             hold = scenes::run_hold_on(world, plant, settings);
             const std::array<double, 2> weld = plant.weld_error();
             std::printf("rigid plant: weld error at the end %.3g m, %.3g rad\n", weld[0], weld[1]);

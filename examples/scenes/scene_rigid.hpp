@@ -26,9 +26,9 @@
 // header belongs to the examples.
 #pragma once
 
-#include "rigid_integrator.hpp"
 #include "scene_world.hpp"
 
+#include <coopdyn/dynamics/integrator.hpp>
 #include <coopdyn/dynamics/joint_space_grasp.hpp>
 #include <coopdyn/spatial/quaternion.hpp>
 
@@ -45,7 +45,8 @@ public:
 
     /// Welds each palm to the object where the world's current state (after world.start()) has
     /// them. `stabilisation_frequency` (rad/s): the Baumgarte terms, critically damped.
-    explicit RigidScenePlant(const SceneWorld& world, RigidIntegrator integrator = RigidIntegrator::semi_implicit_euler,
+    explicit RigidScenePlant(const SceneWorld& world,
+                             coopdyn::Integrator integrator = coopdyn::Integrator::semi_implicit_euler,
                              double stabilisation_frequency = 50.0)
         : world_(world),
           integrator_(integrator),
@@ -126,7 +127,7 @@ public:
     void end_tick(const Eigen::VectorXd& tau, const Vector6& object_wrench)
     {
         object_wrench_ = object_wrench;
-        if (integrator_ == RigidIntegrator::semi_implicit_euler) {
+        if (integrator_ == coopdyn::Integrator::semi_implicit_euler) {
             euler_step(tau);
             return;
         }
@@ -327,7 +328,7 @@ private:
     }
 
     const SceneWorld& world_;
-    RigidIntegrator integrator_;
+    coopdyn::Integrator integrator_;
     DataPointer scratch_;
     coopdyn::JointSpaceGrasp<double> grasp_;
     double stiffness_;

@@ -138,7 +138,7 @@ TEST_P(ShippedScene, HoldsTheObjectOnTheRigidPlant)
     EXPECT_NEAR(hold.max_position_error, mujoco.max_position_error, 3e-4);
 }
 
-// The rigid plant's two integrators (scene_rigid.hpp, RigidIntegrator) on the same 0.5 s hold, at
+// The rigid plant's two integrators (scene_rigid.hpp, coopdyn::Integrator) on the same 0.5 s hold, at
 // the model's 1 ms and at 0.5 ms (the controller ticking at the plant's period): RK4 keeps the weld
 // to rounding (1e-12), and semi-implicit Euler converges to RK4 at first order, its difference in
 // the object's largest excursion halving with the step (ratio 1.5-2.5; RK4's own error, O(dt^4), is
@@ -150,19 +150,19 @@ TEST_P(ShippedScene, RigidPlantIntegratorsConvergeToEachOther)
     std::array<double, 2> euler_weld{};
     for (std::size_t halvings = 0; halvings < 2; ++halvings) {
         std::array<scenes::HoldResult, 2> holds;
-        for (const scenes::RigidIntegrator integrator : {scenes::RigidIntegrator::semi_implicit_euler,
-                                                         scenes::RigidIntegrator::rk4}) {
+        for (const coopdyn::Integrator integrator : {coopdyn::Integrator::semi_implicit_euler,
+                                                         coopdyn::Integrator::runge_kutta_4}) {
             scenes::SceneWorld world(scenes::read_scene(path()));
             world.model()->opt.timestep = halvings == 0 ? 1e-3 : 5e-4;
             world.start();
             scenes::HoldSettings settings;
             settings.seconds = 0.5;
             scenes::RigidScenePlant plant(world, integrator);
-            const auto index = integrator == scenes::RigidIntegrator::rk4 ? 1U : 0U;
+            const auto index = integrator == coopdyn::Integrator::runge_kutta_4 ? 1U : 0U;
             holds[index] = scenes::run_hold_on(world, plant, settings);
             EXPECT_EQ(holds[index].not_ok_ticks, 0);
             const std::array<double, 2> weld = plant.weld_error();
-            if (integrator == scenes::RigidIntegrator::rk4) {
+            if (integrator == coopdyn::Integrator::runge_kutta_4) {
                 EXPECT_LT(weld[0], 1e-12);
                 EXPECT_LT(weld[1], 1e-12);
             } else {

@@ -8,6 +8,7 @@
 #include "coopdyn/detail/validation.hpp"
 #include "coopdyn/dynamics/cooperative_dynamics.hpp"
 #include "coopdyn/dynamics/input_check.hpp"
+#include "coopdyn/dynamics/integrator.hpp"
 #include "coopdyn/model/cooperative_model.hpp"
 #include "coopdyn/spatial/quaternion.hpp"
 
@@ -16,17 +17,6 @@
 #include <utility>
 
 namespace coopdyn {
-
-/// Integration scheme of Simulator.
-enum class Integrator {
-    /// Classical 4th-order Runge-Kutta on (p, q, v, w), quaternion renormalised after each step.
-    /// Four evaluations of the dynamics per step.
-    runge_kutta_4,
-    /// Semi-implicit (symplectic) Euler: v += dt a, then p += dt v and q = exp(dt w) (x) q with the
-    /// new velocity. One evaluation per step; first order, but with bounded energy error for
-    /// the undamped springs.
-    semi_implicit_euler,
-};
 
 /// When Simulator calls the input function within a step.
 enum class InputHold {
