@@ -26,6 +26,7 @@
 // header belongs to the examples.
 #pragma once
 
+#include "chain_dynamics.hpp"
 #include "scene_world.hpp"
 
 #include <coopdyn/dynamics/integrator.hpp>
@@ -33,9 +34,45 @@
 #include <coopdyn/spatial/quaternion.hpp>
 
 #include <array>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace scenes {
+
+/// Each arm's joint count, checking that arm i's joints are the i-th contiguous block of q (the
+/// rigid plant's weld solve and own recursion work arm by arm).
+inline std::vector<Eigen::Index> arm_joint_counts(const SceneWorld& world)
+{
+    const mjModel* model = world.model();
+    const Arms& arms = world.arms();
+    std::vector<Eigen::Index> counts(static_cast<std::size_t>(arms.arms()), 0);
+    Eigen::Index arm = 0;
+    for (Eigen::Index j = 0; j < arms.joints(); ++j) {
+        const int root = model->body_rootid[model->jnt_bodyid[arms.joint_id(j)]];
+        while (arm < arms.arms() && model->body_rootid[arms.contact(arm).body] != root) {
+            ++arm;
+        }
+        if (arm == arms.arms()) {
+            throw SceneError(world.scene().source +
+                             ": the rigid plant needs the joints arm by arm, in the contacts' order (joints[" +
+                             std::to_string(j) + "])");
+        }
+        ++counts[static_cast<std::size_t>(arm)];
+    }
+    for (std::size_t i = 0; i < counts.size(); ++i) {
+        if (counts[i] == 0) {
+            throw SceneError(world.scene().source + ": the rigid plant finds no joint of contact " + std::to_string(i));
+        }
+    }
+    return counts;
+}
+
+/// How the rigid plant evaluates the arms' M, h, J, Jdot qdot and contact frames: by its own
+/// recursion (ChainDynamics, chain_dynamics.hpp; the arms must be serial chains of hinge joints,
+/// else the plant falls back to MuJoCo) or by MuJoCo's stages and the adapter's read. The same
+/// quantities to rounding (test_scenes).
+enum class ArmTermsSource { own_recursion, mujoco };
 
 class RigidScenePlant {
 public:
@@ -47,7 +84,7 @@ public:
     /// them. `stabilisation_frequency` (rad/s): the Baumgarte terms, critically damped.
     explicit RigidScenePlant(const SceneWorld& world,
                              coopdyn::Integrator integrator = coopdyn::Integrator::semi_implicit_euler,
-                             double stabilisation_frequency = 50.0)
+                             double stabilisation_frequency = 50.0, ArmTermsSource source = ArmTermsSource::own_recursion)
         : world_(world),
           integrator_(integrator),
           scratch_(mj_makeData(world.model())),
@@ -70,6 +107,9 @@ public:
         const Index arms = world.arms().arms();
         state_.resize(joints + 7);
         velocity_.resize(joints + 6);
+        if (source == ArmTermsSource::own_recursion) {
+            build_chains();
+        }
         world.arms().read_positions(world.data(), state_.head(joints));
         world.arms().read_velocities(world.data(), velocity_.head(joints));
         const RigidBodyState object = coopdyn::mujoco_object_state(model, world.data(), body);
@@ -79,7 +119,7 @@ public:
         evaluate(state_, velocity_);
         const Eigen::Matrix3d rotation = object.pose.orientation.toRotationMatrix();
         for (Index i = 0; i < arms; ++i) {
-            const coopdyn::Pose<double> palm = world.arms().contact_pose(scratch_.get(), i);
+            const coopdyn::Pose<double> palm = contact_pose(i);
             weld_point_.push_back(rotation.transpose() * (palm.position - object.pose.position));
             weld_rotation_.push_back((object.pose.orientation.conjugate() * palm.orientation).normalized());
         }
@@ -116,7 +156,15 @@ public:
         input.object.twist = velocity_.tail<6>();
         input.object_acceleration = acceleration_;
     }
-    coopdyn::Pose<double> contact_pose(Index i) const { return world_.arms().contact_pose(scratch_.get(), i); }
+    /// Contact i's frame in {w} at the last evaluation (begin_tick's: the current state).
+    coopdyn::Pose<double> contact_pose(Index i) const
+    {
+        return chains_.empty() ? world_.arms().contact_pose(scratch_.get(), i) : contact_poses_[static_cast<std::size_t>(i)];
+    }
+    /// Whether the arms' terms come from the own recursion; if not, why (empty when MuJoCo was
+    /// asked for).
+    bool own_recursion() const noexcept { return !chains_.empty(); }
+    const std::string& why_not_own_recursion() const noexcept { return why_not_own_recursion_; }
 
     /// One step under tau (held over the step), by the plant's integrator; the palms' wrenches are
     /// those at the step's start (the state the controller saw). Needs begin_tick() at the current
@@ -186,36 +234,40 @@ public:
     }
 
 private:
-    /// Each arm's joint count, checking that arm i's joints are the i-th contiguous block of q.
-    static std::vector<Index> arm_joint_counts(const SceneWorld& world)
+    /// Each arm's own recursion, when every arm is a serial chain of hinges (else none: MuJoCo).
+    void build_chains()
     {
-        const mjModel* model = world.model();
-        const Arms& arms = world.arms();
-        std::vector<Index> counts(static_cast<std::size_t>(arms.arms()), 0);
-        Index arm = 0;
-        for (Index j = 0; j < arms.joints(); ++j) {
-            const int root = model->body_rootid[model->jnt_bodyid[arms.joint_id(j)]];
-            while (arm < arms.arms() && model->body_rootid[arms.contact(arm).body] != root) {
-                ++arm;
+        Index first = 0;
+        for (Index i = 0; i < world_.arms().arms(); ++i) {
+            std::optional<ChainDynamics> chain =
+                ChainDynamics::from_mujoco(world_.model(), world_.arms(), i, first, grasp_.joints(i), why_not_own_recursion_);
+            if (!chain) {
+                chains_.clear();
+                return;
             }
-            if (arm == arms.arms()) {
-                throw SceneError(world.scene().source +
-                                 ": the rigid plant needs the joints arm by arm, in the contacts' order (joints[" +
-                                 std::to_string(j) + "])");
-            }
-            ++counts[static_cast<std::size_t>(arm)];
+            chains_.push_back(*chain);
+            first += grasp_.joints(i);
         }
-        for (std::size_t i = 0; i < counts.size(); ++i) {
-            if (counts[i] == 0) {
-                throw SceneError(world.scene().source + ": the rigid plant finds no joint of contact " + std::to_string(i));
-            }
-        }
-        return counts;
+        contact_poses_.resize(chains_.size());
     }
 
-    /// The arms' terms at (position, velocity), into input_ (scratch_ holds the state after).
+    /// The arms' terms at (position, velocity), into input_: by the own recursion, or by MuJoCo on
+    /// scratch_ (which then holds the state after).
     void evaluate(const Eigen::VectorXd& position, const Eigen::VectorXd& velocity) noexcept
     {
+        if (!chains_.empty()) {
+            Index first = 0;
+            for (std::size_t i = 0; i < chains_.size(); ++i) {
+                const Index n = chains_[i].joints();
+                const Index rows = 6 * static_cast<Index>(i);
+                chains_[i].evaluate(position.segment(first, n), velocity.segment(first, n),
+                                    input_.inertia.block(first, first, n, n), input_.bias.segment(first, n),
+                                    input_.jacobian.block(rows, first, 6, n), input_.jacobian_rate_qdot.segment<6>(rows),
+                                    contact_poses_[i]);
+                first += n;
+            }
+            return;
+        }
         const Arms& arms = world_.arms();
         for (Index j = 0; j < arms.joints(); ++j) {
             scratch_->qpos[arms.qpos_address(j)] = position(j);
@@ -254,7 +306,7 @@ private:
             const Index n = grasp_.joints(i);
             const Eigen::Vector3d r = rotation * weld_point_[index];
             offsets_.col(i) = r;
-            const coopdyn::Pose<double> palm = arms.contact_pose(scratch_.get(), i);
+            const coopdyn::Pose<double> palm = contact_pose(i);
             const Vector6 twist = input_.jacobian.block(6 * i, first, 6, n) * velocity.segment(first, n);
             Vector6 error;
             error << palm.position - centre - r,
@@ -285,7 +337,7 @@ private:
             measured_.resize(static_cast<std::size_t>(arms.arms()));
             for (Index i = 0; i < arms.arms(); ++i) {
                 measured_[static_cast<std::size_t>(i)] = -grasp_.palm_wrench(i);
-                const coopdyn::Pose<double> palm = arms.contact_pose(scratch_.get(), i);
+                const coopdyn::Pose<double> palm = contact_pose(i);
                 // The palm's wrench on the object is -h_i; its normal: the contact frame's z.
                 normal_force_[static_cast<std::size_t>(i)] =
                     -(palm.orientation * Eigen::Vector3d::UnitZ()).dot(grasp_.palm_wrench(i).head<3>());
@@ -356,6 +408,9 @@ private:
     std::array<Eigen::VectorXd, 4> velocity_rate_;
     Eigen::VectorXd joint_acceleration_;
     Eigen::VectorXd free_torque_;
+    std::vector<ChainDynamics> chains_;  ///< one per arm, or none (MuJoCo's stages)
+    std::vector<coopdyn::Pose<double>> contact_poses_;  ///< the chains' contact frames at the last evaluation
+    std::string why_not_own_recursion_;
 };
 
 }  // namespace scenes

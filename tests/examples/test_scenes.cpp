@@ -180,6 +180,113 @@ TEST_P(ShippedScene, RigidPlantIntegratorsConvergeToEachOther)
     EXPECT_GT(euler_weld[0] / euler_weld[1], 1.5);
 }
 
+// The rigid plant's own recursion (chain_dynamics.hpp, built from the model's constants) against
+// what MuJoCo computes for the same arms (its stages mj_kinematics, mj_comPos, mj_crb, mj_comVel,
+// mj_rne and the library's adapter's read), at random states of every shipped scene: joints up to
+// 0.8 rad from the start posture, velocities up to 2 rad/s. M, h, J, Jdot qdot and the contact
+// frames to rounding (1e-10 of each quantity's scale).
+TEST_P(ShippedScene, OwnRecursionGivesMujocosArmTerms)
+{
+    scenes::SceneWorld world(scenes::read_scene(path()));
+    world.start();
+    const mjModel* model = world.model();
+    mjData* data = world.data();
+    const scenes::Arms& arms = world.arms();
+    const std::vector<Eigen::Index> counts = scenes::arm_joint_counts(world);
+    std::vector<scenes::ChainDynamics> chains;
+    Eigen::Index first = 0;
+    for (Eigen::Index i = 0; i < arms.arms(); ++i) {
+        std::string why;
+        const auto chain = scenes::ChainDynamics::from_mujoco(model, arms, i, first, counts[static_cast<std::size_t>(i)], why);
+        ASSERT_TRUE(chain.has_value()) << why;
+        chains.push_back(*chain);
+        first += counts[static_cast<std::size_t>(i)];
+    }
+    const Eigen::VectorXd start = world.start_positions();
+    std::mt19937 generator(17);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    coopdyn::ControllerInput<double> mujoco(arms.arms(), arms.joints());
+    coopdyn::ControllerInput<double> own(arms.arms(), arms.joints());
+    std::array<double, 5> worst{};  // M, h, J, Jdot qdot, contact frames
+    for (int sample = 0; sample < 5; ++sample) {
+        Eigen::VectorXd q(arms.joints()), qdot(arms.joints());
+        for (Eigen::Index j = 0; j < arms.joints(); ++j) {
+            q(j) = start(j) + 0.8 * uniform(generator);
+            qdot(j) = 2.0 * uniform(generator);
+            data->qpos[arms.qpos_address(j)] = q(j);
+            data->qvel[arms.dof_address(j)] = qdot(j);
+        }
+        mj_kinematics(model, data);
+        mj_comPos(model, data);
+        mj_crb(model, data);
+        mj_comVel(model, data);
+        mj_rne(model, data, 0, data->qfrc_bias);
+        arms.read(model, data, mujoco);
+        first = 0;
+        for (std::size_t i = 0; i < chains.size(); ++i) {
+            const Eigen::Index n = chains[i].joints();
+            const auto rows = 6 * static_cast<Eigen::Index>(i);
+            coopdyn::Pose<double> contact;
+            chains[i].evaluate(q.segment(first, n), qdot.segment(first, n), own.inertia.block(first, first, n, n),
+                               own.bias.segment(first, n), own.jacobian.block(rows, first, 6, n),
+                               own.jacobian_rate_qdot.segment<6>(rows), contact);
+            const auto index = static_cast<Eigen::Index>(i);
+            worst[4] = std::max({worst[4], (contact.position - arms.contact_position(data, index)).norm(),
+                                 (contact.orientation.toRotationMatrix() - arms.contact_rotation(data, index)).norm()});
+            first += n;
+        }
+        worst[0] = std::max(worst[0], (own.inertia - mujoco.inertia).norm() / mujoco.inertia.norm());
+        worst[1] = std::max(worst[1], (own.bias - mujoco.bias).norm() / mujoco.bias.norm());
+        worst[2] = std::max(worst[2], (own.jacobian - mujoco.jacobian).norm() / mujoco.jacobian.norm());
+        worst[3] = std::max(worst[3], (own.jacobian_rate_qdot - mujoco.jacobian_rate_qdot).norm() /
+                                          mujoco.jacobian_rate_qdot.norm());
+    }
+    std::printf("%s: own recursion against MuJoCo, relative: M %.2g, h %.2g, J %.2g, Jdot qdot %.2g; contact frames %.2g\n",
+                GetParam(), worst[0], worst[1], worst[2], worst[3], worst[4]);
+    for (const double error : worst) {
+        EXPECT_LT(error, 1e-10);
+    }
+}
+
+// The rigid plant holds the same with either source of the arms' terms (0.3 s): the object's
+// excursion and the welds' normal forces to rounding's growth over 500 ticks.
+TEST_P(ShippedScene, RigidPlantHoldsTheSameWithEitherArmTerms)
+{
+    std::array<scenes::HoldResult, 2> holds;
+    for (const scenes::ArmTermsSource source : {scenes::ArmTermsSource::own_recursion, scenes::ArmTermsSource::mujoco}) {
+        scenes::SceneWorld world(scenes::read_scene(path()));
+        world.start();
+        scenes::HoldSettings settings;
+        settings.seconds = 0.3;
+        scenes::RigidScenePlant plant(world, coopdyn::Integrator::semi_implicit_euler, 50.0, source);
+        EXPECT_EQ(plant.own_recursion(), source == scenes::ArmTermsSource::own_recursion) << plant.why_not_own_recursion();
+        holds[source == scenes::ArmTermsSource::mujoco ? 1U : 0U] = scenes::run_hold_on(world, plant, settings);
+    }
+    EXPECT_NEAR(holds[0].max_position_error, holds[1].max_position_error, 1e-9);
+    EXPECT_NEAR(holds[0].max_orientation_error, holds[1].max_orientation_error, 1e-9);
+    for (std::size_t i = 0; i < holds[0].palms.size(); ++i) {
+        EXPECT_NEAR(holds[0].palms[i].final_normal_force, holds[1].palms[i].final_normal_force,
+                    1e-7 * holds[1].palms[i].final_normal_force) << "palm " << i;
+    }
+}
+
+// An arm the own recursion does not model (here one joint made a slide) gets no chain, the reason
+// names the joint, and the rigid plant falls back to MuJoCo's stages.
+TEST(ChainDynamics, NamesWhatItDoesNotModelAndThePlantFallsBack)
+{
+    scenes::SceneWorld world(scenes::read_scene(scene_dir + "/ur5e_panda.json"));
+    world.start();
+    const int joint = world.arms().joint_id(8);
+    world.model()->jnt_type[joint] = mjJNT_SLIDE;
+    std::string why;
+    EXPECT_FALSE(scenes::ChainDynamics::from_mujoco(world.model(), world.arms(), 1, 6, 7, why).has_value());
+    EXPECT_NE(why.find(mj_id2name(world.model(), mjOBJ_JOINT, joint)), std::string::npos) << why;
+    EXPECT_TRUE(scenes::ChainDynamics::from_mujoco(world.model(), world.arms(), 0, 0, 6, why).has_value());
+    const scenes::RigidScenePlant plant(world);
+    EXPECT_FALSE(plant.own_recursion());
+    EXPECT_NE(plant.why_not_own_recursion().find("arm 1"), std::string::npos) << plant.why_not_own_recursion();
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::Values("lwr4_pair", "ur5e_panda", "three_arms"));
 
 // One robot of a generated scene: its joints (a block of q) and the URDF it was generated from.
