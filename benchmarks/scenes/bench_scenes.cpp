@@ -13,6 +13,11 @@
 //   KdlRead/ur5e_panda/{fixed,dynamic}  KdlArms<2, 13>::read (and KdlArms<>) on the URDF files
 //                                       (examples/robots), mounted where the scene mounts them, at
 //                                       the same q, qdot (checked against MuJoCo's M to 1e-10)
+//   ArmTerms/<scene>/{own_recursion,mujoco}  the rigid plant's evaluation of all arms' M, h, J,
+//                                       Jdot qdot and contact frames at the held state: its own
+//                                       recursion (scene_rigid.hpp, evaluate_chains) and MuJoCo's
+//                                       five smooth stages plus MujocoArms<>::read on a scratch
+//                                       mjData (checked to agree to 1e-12)
 //   SceneHold/<scene>/{mujoco,rigid}    the hold loop (scene_hold.hpp, run_hold_on) of 500 ticks
 //                                       from the scene's start (0.2 s settling + 0.3 s held) on the
 //                                       MuJoCo plant and on the rigid plant (scene_rigid.hpp);
@@ -207,6 +212,56 @@ template <int K, int Q> void BM_KdlRead(benchmark::State& state)
 }
 #endif
 
+// ---- the rigid plant's evaluation of the arms' terms --------------------------------------------
+
+template <bool Own> void BM_ArmTerms(benchmark::State& state, const char* name)
+{
+    const HeldScene& s = held_scene(name);
+    if (!check_sizes(state, s, Dynamic, Dynamic)) {
+        return;
+    }
+    const scenes::SceneWorld& world = *s.world;
+    const mjModel* model = world.model();
+    const scenes::Arms& arms = world.arms();
+    coopdyn::ControllerInput<double> input(arms.arms(), arms.joints());
+    const Eigen::VectorXd q = s.input->positions;
+    const Eigen::VectorXd qdot = s.input->velocities;
+    std::string why;
+    const std::vector<scenes::ChainDynamics> chains = scenes::arm_chains(world, why);
+    std::vector<coopdyn::Pose<double>> contacts(chains.size());
+    scenes::DataPointer scratch(mj_makeData(model));
+    mj_copyData(scratch.get(), model, s.held.get());
+    const auto evaluate = [&] {
+        if constexpr (Own) {
+            scenes::evaluate_chains(chains, q, qdot, input, contacts);
+        } else {
+            mjData* data = scratch.get();
+            for (Eigen::Index j = 0; j < arms.joints(); ++j) {
+                data->qpos[arms.qpos_address(j)] = q(j);
+                data->qvel[arms.dof_address(j)] = qdot(j);
+            }
+            mj_kinematics(model, data);
+            mj_comPos(model, data);
+            mj_crb(model, data);
+            mj_comVel(model, data);
+            mj_rne(model, data, 0, data->qfrc_bias);
+            arms.read(model, data, input);
+        }
+    };
+    evaluate();
+    if (chains.empty() || (input.inertia - s.input->inertia).norm() > 1e-12 * s.input->inertia.norm() ||
+        (input.bias - s.input->bias).norm() > 1e-12 * s.input->bias.norm()) {
+        state.SkipWithError(("no own recursion, or its terms differ from MuJoCo's: " + why).c_str());
+        return;
+    }
+    for (auto _ : state) {
+        evaluate();
+        benchmark::DoNotOptimize(input.inertia.data());
+        benchmark::DoNotOptimize(input.jacobian_rate_qdot.data());
+        benchmark::ClobberMemory();
+    }
+}
+
 // ---- the whole 1 ms step: the hold loop on both plants ---------------------------------------------
 
 template <bool Rigid> void BM_SceneHold(benchmark::State& state, const char* name)
@@ -272,6 +327,11 @@ int register_benchmarks()
     benchmark::RegisterBenchmark("KdlRead/ur5e_panda_K2_Q13/fixed", BM_KdlRead<2, 13>);
     benchmark::RegisterBenchmark("KdlRead/ur5e_panda_K2_Q13/dynamic", BM_KdlRead<Dynamic, Dynamic>);
 #endif
+    for (const char* scene : {"lwr4_pair", "ur5e_panda", "three_arms"}) {
+        const std::string terms = std::string("ArmTerms/") + scene;
+        benchmark::RegisterBenchmark((terms + "/own_recursion").c_str(), BM_ArmTerms<true>, scene);
+        benchmark::RegisterBenchmark((terms + "/mujoco").c_str(), BM_ArmTerms<false>, scene);
+    }
     for (const char* scene : {"lwr4_pair", "ur5e_panda", "three_arms"}) {
         const std::string name = std::string("SceneHold/") + scene;
         benchmark::RegisterBenchmark((name + "/mujoco").c_str(), BM_SceneHold<false>, scene)->Unit(benchmark::kMillisecond);

@@ -68,6 +68,43 @@ inline std::vector<Eigen::Index> arm_joint_counts(const SceneWorld& world)
     return counts;
 }
 
+/// Every arm's own recursion (ChainDynamics, chain_dynamics.hpp), in the contacts' order; none,
+/// with `why` naming the arm and what is not modelled, when one arm is not a chain it models.
+inline std::vector<ChainDynamics> arm_chains(const SceneWorld& world, std::string& why)
+{
+    const std::vector<Eigen::Index> counts = arm_joint_counts(world);
+    std::vector<ChainDynamics> chains;
+    Eigen::Index first = 0;
+    for (Eigen::Index i = 0; i < world.arms().arms(); ++i) {
+        const Eigen::Index count = counts[static_cast<std::size_t>(i)];
+        std::optional<ChainDynamics> chain = ChainDynamics::from_mujoco(world.model(), world.arms(), i, first, count, why);
+        if (!chain) {
+            return {};
+        }
+        chains.push_back(*chain);
+        first += count;
+    }
+    return chains;
+}
+
+/// The arms' M, h, J, Jdot qdot at (q, qdot) (their first Q entries, arm by arm) into `input`'s
+/// blocks, arm by arm (the blocks between two arms are left alone: zero), and each contact's frame
+/// into contacts[i] (sized K). Allocates nothing.
+template <typename Positions, typename Velocities>
+void evaluate_chains(const std::vector<ChainDynamics>& chains, const Positions& q, const Velocities& qdot,
+                     coopdyn::ControllerInput<double>& input, std::vector<coopdyn::Pose<double>>& contacts) noexcept
+{
+    Eigen::Index first = 0;
+    for (std::size_t i = 0; i < chains.size(); ++i) {
+        const Eigen::Index n = chains[i].joints();
+        const Eigen::Index rows = 6 * static_cast<Eigen::Index>(i);
+        chains[i].evaluate(q.segment(first, n), qdot.segment(first, n), input.inertia.block(first, first, n, n),
+                           input.bias.segment(first, n), input.jacobian.block(rows, first, 6, n),
+                           input.jacobian_rate_qdot.template segment<6>(rows), contacts[i]);
+        first += n;
+    }
+}
+
 /// How the rigid plant evaluates the arms' M, h, J, Jdot qdot and contact frames: by its own
 /// recursion (ChainDynamics, chain_dynamics.hpp; the arms must be serial chains of hinge joints,
 /// else the plant falls back to MuJoCo) or by MuJoCo's stages and the adapter's read. The same
@@ -108,7 +145,8 @@ public:
         state_.resize(joints + 7);
         velocity_.resize(joints + 6);
         if (source == ArmTermsSource::own_recursion) {
-            build_chains();
+            chains_ = arm_chains(world, why_not_own_recursion_);
+            contact_poses_.resize(chains_.size());
         }
         world.arms().read_positions(world.data(), state_.head(joints));
         world.arms().read_velocities(world.data(), velocity_.head(joints));
@@ -234,38 +272,12 @@ public:
     }
 
 private:
-    /// Each arm's own recursion, when every arm is a serial chain of hinges (else none: MuJoCo).
-    void build_chains()
-    {
-        Index first = 0;
-        for (Index i = 0; i < world_.arms().arms(); ++i) {
-            std::optional<ChainDynamics> chain =
-                ChainDynamics::from_mujoco(world_.model(), world_.arms(), i, first, grasp_.joints(i), why_not_own_recursion_);
-            if (!chain) {
-                chains_.clear();
-                return;
-            }
-            chains_.push_back(*chain);
-            first += grasp_.joints(i);
-        }
-        contact_poses_.resize(chains_.size());
-    }
-
     /// The arms' terms at (position, velocity), into input_: by the own recursion, or by MuJoCo on
     /// scratch_ (which then holds the state after).
     void evaluate(const Eigen::VectorXd& position, const Eigen::VectorXd& velocity) noexcept
     {
         if (!chains_.empty()) {
-            Index first = 0;
-            for (std::size_t i = 0; i < chains_.size(); ++i) {
-                const Index n = chains_[i].joints();
-                const Index rows = 6 * static_cast<Index>(i);
-                chains_[i].evaluate(position.segment(first, n), velocity.segment(first, n),
-                                    input_.inertia.block(first, first, n, n), input_.bias.segment(first, n),
-                                    input_.jacobian.block(rows, first, 6, n), input_.jacobian_rate_qdot.segment<6>(rows),
-                                    contact_poses_[i]);
-                first += n;
-            }
+            evaluate_chains(chains_, position, velocity, input_, contact_poses_);
             return;
         }
         const Arms& arms = world_.arms();

@@ -192,16 +192,9 @@ TEST_P(ShippedScene, OwnRecursionGivesMujocosArmTerms)
     const mjModel* model = world.model();
     mjData* data = world.data();
     const scenes::Arms& arms = world.arms();
-    const std::vector<Eigen::Index> counts = scenes::arm_joint_counts(world);
-    std::vector<scenes::ChainDynamics> chains;
-    Eigen::Index first = 0;
-    for (Eigen::Index i = 0; i < arms.arms(); ++i) {
-        std::string why;
-        const auto chain = scenes::ChainDynamics::from_mujoco(model, arms, i, first, counts[static_cast<std::size_t>(i)], why);
-        ASSERT_TRUE(chain.has_value()) << why;
-        chains.push_back(*chain);
-        first += counts[static_cast<std::size_t>(i)];
-    }
+    std::string why;
+    const std::vector<scenes::ChainDynamics> chains = scenes::arm_chains(world, why);
+    ASSERT_EQ(chains.size(), static_cast<std::size_t>(arms.arms())) << why;
     const Eigen::VectorXd start = world.start_positions();
     std::mt19937 generator(17);
     std::uniform_real_distribution<double> uniform(-1.0, 1.0);
@@ -222,18 +215,12 @@ TEST_P(ShippedScene, OwnRecursionGivesMujocosArmTerms)
         mj_comVel(model, data);
         mj_rne(model, data, 0, data->qfrc_bias);
         arms.read(model, data, mujoco);
-        first = 0;
-        for (std::size_t i = 0; i < chains.size(); ++i) {
-            const Eigen::Index n = chains[i].joints();
-            const auto rows = 6 * static_cast<Eigen::Index>(i);
-            coopdyn::Pose<double> contact;
-            chains[i].evaluate(q.segment(first, n), qdot.segment(first, n), own.inertia.block(first, first, n, n),
-                               own.bias.segment(first, n), own.jacobian.block(rows, first, 6, n),
-                               own.jacobian_rate_qdot.segment<6>(rows), contact);
-            const auto index = static_cast<Eigen::Index>(i);
-            worst[4] = std::max({worst[4], (contact.position - arms.contact_position(data, index)).norm(),
-                                 (contact.orientation.toRotationMatrix() - arms.contact_rotation(data, index)).norm()});
-            first += n;
+        std::vector<coopdyn::Pose<double>> contacts(chains.size());
+        scenes::evaluate_chains(chains, q, qdot, own, contacts);
+        for (Eigen::Index i = 0; i < arms.arms(); ++i) {
+            const coopdyn::Pose<double>& contact = contacts[static_cast<std::size_t>(i)];
+            worst[4] = std::max({worst[4], (contact.position - arms.contact_position(data, i)).norm(),
+                                 (contact.orientation.toRotationMatrix() - arms.contact_rotation(data, i)).norm()});
         }
         worst[0] = std::max(worst[0], (own.inertia - mujoco.inertia).norm() / mujoco.inertia.norm());
         worst[1] = std::max(worst[1], (own.bias - mujoco.bias).norm() / mujoco.bias.norm());
