@@ -48,11 +48,11 @@ template <int N, int Capacity = N> struct ChainKinematics {
     std::array<coopdyn::Symmetric3<double>, Capacity> inertia_world{};
 };
 
-/// h and M (the file comment) of a chain whose link i has mass mass[i], into `bias` (n) and
+/// h and M (the file comment) of a chain whose link i has mass mass[i] (an array), into `bias` (n) and
 /// `inertia` (n x n, both triangles). `gravity`: g in {w}.
-template <int N, int Capacity, typename Inertia, typename Bias>
-void chain_inward_pass(const ChainKinematics<N, Capacity>& pass, const std::array<double, std::size_t(Capacity)>& mass,
-                       const Eigen::Vector3d& gravity, Inertia&& inertia, Bias&& bias) noexcept
+template <int N, int Capacity, typename Masses, typename Inertia, typename Bias>
+void chain_inward_pass(const ChainKinematics<N, Capacity>& pass, const Masses& mass, const Eigen::Vector3d& gravity,
+                       Inertia&& inertia, Bias&& bias) noexcept
 {
     using Eigen::Vector3d;
     const auto& [axis, pivot, com, angular_velocity, angular_acceleration, com_acceleration, inertia_world] = pass;

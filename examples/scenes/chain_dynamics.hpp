@@ -49,7 +49,6 @@ constexpr int max_chain_joints = 12;
 class ChainDynamics {
 public:
     using Index = Eigen::Index;
-    using Kinematics = example_common::ChainKinematics<Eigen::Dynamic, max_chain_joints>;
 
     /// The chain of `arms`' arm `arm`, whose joints are q's [first, first + count), from `model`
     /// (the one the adapter was built from, or a copy). No chain, with `why` set, when the arm is
@@ -60,12 +59,27 @@ public:
     Index joints() const noexcept { return static_cast<Index>(joint_count_); }
 
     /// M (n x n), h (n), J (6 x n, rows [v; w] of the contact point), Jdot qdot (6) and the contact
-    /// frame at (q, qdot) (n each), into the given blocks. Allocates nothing.
+    /// frame at (q, qdot) (n each), into the given blocks. Allocates nothing. Six- and seven-joint
+    /// arms run at those fixed sizes (the loops unrolled), others at run-time sizes.
     template <typename Q, typename Qdot, typename Inertia, typename Bias, typename Jacobian, typename Rate>
     void evaluate(const Q& q, const Qdot& qdot, Inertia&& inertia, Bias&& bias, Jacobian&& jacobian, Rate&& rate,
                   coopdyn::Pose<double>& contact) const noexcept
     {
-        Kinematics pass(joints());
+        switch (joint_count_) {
+        case 6: evaluate_at<6>(q, qdot, inertia, bias, jacobian, rate, contact); break;
+        case 7: evaluate_at<7>(q, qdot, inertia, bias, jacobian, rate, contact); break;
+        default: evaluate_at<Eigen::Dynamic>(q, qdot, inertia, bias, jacobian, rate, contact); break;
+        }
+    }
+
+private:
+    ChainDynamics() = default;
+
+    template <int N, typename Q, typename Qdot, typename Inertia, typename Bias, typename Jacobian, typename Rate>
+    void evaluate_at(const Q& q, const Qdot& qdot, Inertia& inertia, Bias& bias, Jacobian& jacobian, Rate& rate,
+                     coopdyn::Pose<double>& contact) const noexcept
+    {
+        example_common::ChainKinematics<N, N == Eigen::Dynamic ? max_chain_joints : N> pass(joints());
         Eigen::Matrix3d rotation;
         Eigen::Vector3d origin, origin_acceleration;
         outward_pass(q, qdot, pass, rotation, origin, origin_acceleration);
@@ -76,12 +90,9 @@ public:
         example_common::chain_contact_terms(pass, contact.position, origin, origin_acceleration, jacobian, rate);
     }
 
-private:
-    ChainDynamics() = default;
-
     /// Frames, axes, velocities and velocity-product accelerations of the links; the last link's
     /// frame (rotation, origin: its pivot) and its pivot's acceleration.
-    template <typename Q, typename Qdot>
+    template <typename Q, typename Qdot, typename Kinematics>
     void outward_pass(const Q& q, const Qdot& qdot, Kinematics& pass, Eigen::Matrix3d& rotation, Eigen::Vector3d& origin,
                       Eigen::Vector3d& origin_acceleration) const noexcept
     {
@@ -96,7 +107,7 @@ private:
         origin.setZero();
         origin_acceleration.setZero();
         Vector3d w = Vector3d::Zero(), alpha = Vector3d::Zero();
-        for (std::size_t k = 0; k < joint_count_; ++k) {
+        for (std::size_t k = 0; k < static_cast<std::size_t>(pass.joints()); ++k) {
             const auto i = static_cast<Index>(k);
             // F_{k-1} X_k: the frame before joint k turns. Its pivot is fixed in link k - 1, so it
             // accelerates with that link's w and alpha.
