@@ -235,17 +235,8 @@ template <bool Own> void BM_ArmTerms(benchmark::State& state, const char* name)
         if constexpr (Own) {
             scenes::evaluate_chains(chains, q, qdot, input, contacts);
         } else {
-            mjData* data = scratch.get();
-            for (Eigen::Index j = 0; j < arms.joints(); ++j) {
-                data->qpos[arms.qpos_address(j)] = q(j);
-                data->qvel[arms.dof_address(j)] = qdot(j);
-            }
-            mj_kinematics(model, data);
-            mj_comPos(model, data);
-            mj_crb(model, data);
-            mj_comVel(model, data);
-            mj_rne(model, data, 0, data->qfrc_bias);
-            arms.read(model, data, input);
+            scenes::run_arm_stages(model, scratch.get(), arms, q, qdot);
+            arms.read(model, scratch.get(), input);
         }
     };
     evaluate();

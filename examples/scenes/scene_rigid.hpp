@@ -4,8 +4,9 @@
 // structured kernel, docs/dynamics.md "Arms in joint space") and integrated at the model's
 // timestep by semi-implicit Euler (the default, MuJoCo's own integrator) or RK4. The dual-arm
 // box's rigid plant (examples/box/rigid_plant.hpp) for any K and arms of any joint counts; the
-// arms' M, h, J, Jdot qdot come from MuJoCo through the adapter (MujocoArms::read on a scratch
-// mjData), not from an own recursion.
+// arms' M, h, J, Jdot qdot come from the plant's own recursion (chain_dynamics.hpp, built from the
+// MJCF's constants; MuJoCo's to rounding), or, for arms it does not model (ArmTermsSource), from
+// MuJoCo's smooth stages through the adapter (MujocoArms::read on a scratch mjData).
 //
 // Coordinates: the arms' q (Q), the object's centre of mass p and orientation (its body frame),
 // qdot, the centre's velocity v and the angular velocity w ({w}). Unconstrained dynamics
@@ -16,11 +17,10 @@
 // Needs arms that share no joint, their joints contiguous in q and in the contacts' order (checked
 // at construction): JointSpaceGrasp works arm by arm. The RK4 stages' vectors are sized at
 // construction (the simulated world is not a per-tick path: only the controller's tick is proven
-// not to allocate, docs/conventions.md). Each evaluation runs MuJoCo's smooth stages (kinematics,
-// M, velocities, h; no collision, no constraint solver). Semi-implicit Euler evaluates once per
-// step, at the step's start, which is the evaluation begin_tick made for the controller's input:
-// the hold runs at 74-76x real time on the pairs and 43x with three arms (CPU time,
-// docs/performance.md, "Scenes of any arms"); RK4 evaluates four times (30-33x and 20x). Euler's
+// not to allocate, docs/conventions.md). Semi-implicit Euler evaluates the arms once per step, at
+// the step's start, which is the evaluation begin_tick made for the controller's input: the hold
+// runs at 93-100x real time on the pairs and 51x with three arms, the controller at Dynamic sizes
+// (CPU time, docs/performance.md, "Scenes of any arms"); RK4 evaluates four times. Euler's
 // error is first order (the object's excursion differs from RK4's by 4-34 um over 0.5 s at 1 ms,
 // halving with the step; its weld error is under 1 um where RK4's is 1e-15 m: test_scenes). This
 // header belongs to the examples.
@@ -66,6 +66,25 @@ inline std::vector<Eigen::Index> arm_joint_counts(const SceneWorld& world)
         }
     }
     return counts;
+}
+
+/// The arms' joints at (q, qdot) (their first Q entries) in `data`, then only the MuJoCo stages the
+/// adapter's read needs (docs/adapters.md, "What read reads"): positions, the composite inertias
+/// and M, velocities and cdof_dot, h. Not mj_forward: a scratch mjData keeps the object at its
+/// start pose, so MuJoCo would also detect the palms' contacts and run its constraint solver, 84 %
+/// of the rigid plant's instructions when it did (docs/performance.md, "Scenes of any arms").
+template <typename Positions, typename Velocities>
+void run_arm_stages(const mjModel* model, mjData* data, const Arms& arms, const Positions& q, const Velocities& qdot) noexcept
+{
+    for (Eigen::Index j = 0; j < arms.joints(); ++j) {
+        data->qpos[arms.qpos_address(j)] = q(j);
+        data->qvel[arms.dof_address(j)] = qdot(j);
+    }
+    mj_kinematics(model, data);
+    mj_comPos(model, data);
+    mj_crb(model, data);
+    mj_comVel(model, data);
+    mj_rne(model, data, 0, data->qfrc_bias);
 }
 
 /// Every arm's own recursion (ChainDynamics, chain_dynamics.hpp), in the contacts' order; none,
@@ -280,24 +299,8 @@ private:
             evaluate_chains(chains_, position, velocity, input_, contact_poses_);
             return;
         }
-        const Arms& arms = world_.arms();
-        for (Index j = 0; j < arms.joints(); ++j) {
-            scratch_->qpos[arms.qpos_address(j)] = position(j);
-            scratch_->qvel[arms.dof_address(j)] = velocity(j);
-        }
-        // Only the stages the adapter reads (docs/adapters.md, "What read reads"): positions, the
-        // composite inertias and M, velocities and cdof_dot, h. Not mj_forward: the scratch data
-        // keeps the object at its start pose, so MuJoCo would also detect the palms' contacts and
-        // run its constraint solver at every RK4 stage, 84 % of the plant's instructions
-        // (docs/performance.md, "Scenes of any arms").
-        const mjModel* model = world_.model();
-        mjData* data = scratch_.get();
-        mj_kinematics(model, data);
-        mj_comPos(model, data);
-        mj_crb(model, data);
-        mj_comVel(model, data);
-        mj_rne(model, data, 0, data->qfrc_bias);
-        arms.read(model, data, input_);
+        run_arm_stages(world_.model(), scratch_.get(), world_.arms(), position, velocity);
+        world_.arms().read(world_.model(), scratch_.get(), input_);
     }
 
     /// The weld at (position, velocity) with the terms in input_: stage_acceleration_ = [qdd; a;

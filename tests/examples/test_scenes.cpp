@@ -206,14 +206,8 @@ TEST_P(ShippedScene, OwnRecursionGivesMujocosArmTerms)
         for (Eigen::Index j = 0; j < arms.joints(); ++j) {
             q(j) = start(j) + 0.8 * uniform(generator);
             qdot(j) = 2.0 * uniform(generator);
-            data->qpos[arms.qpos_address(j)] = q(j);
-            data->qvel[arms.dof_address(j)] = qdot(j);
         }
-        mj_kinematics(model, data);
-        mj_comPos(model, data);
-        mj_crb(model, data);
-        mj_comVel(model, data);
-        mj_rne(model, data, 0, data->qfrc_bias);
+        scenes::run_arm_stages(model, data, arms, q, qdot);
         arms.read(model, data, mujoco);
         std::vector<coopdyn::Pose<double>> contacts(chains.size());
         scenes::evaluate_chains(chains, q, qdot, own, contacts);
