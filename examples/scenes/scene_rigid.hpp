@@ -19,7 +19,7 @@
 // construction (the simulated world is not a per-tick path: only the controller's tick is proven
 // not to allocate, docs/conventions.md). Semi-implicit Euler evaluates the arms once per step, at
 // the step's start, which is the evaluation begin_tick made for the controller's input: the hold
-// runs at 93-100x real time on the pairs and 51x with three arms, the controller at Dynamic sizes
+// runs at 93-102x real time on the pairs and 51-54x with three arms, the controller at Dynamic sizes
 // (CPU time, docs/performance.md, "Scenes of any arms"); RK4 evaluates four times. Euler's
 // error is first order (the object's excursion differs from RK4's by 4-34 um over 0.5 s at 1 ms,
 // halving with the step; its weld error is under 1 um where RK4's is 1e-15 m: test_scenes). This
