@@ -75,6 +75,15 @@ public:
 private:
     ChainDynamics() = default;
 
+    // from_mujoco's three steps (below the class); each sets `why` and returns false when the arm
+    // is not a chain the recursion models.
+    bool set_joints(const mjModel* model, const coopdyn::MujocoArms<>& arms, Index first, std::vector<int>& bodies,
+                    std::vector<Eigen::Isometry3d>& frames, std::string& why);
+    bool set_contact(const mjModel* model, const coopdyn::detail::MujocoContact& contact, int last_body,
+                     const Eigen::Isometry3d& last_frame, std::string& why);
+    bool set_inertias(const mjModel* model, const std::vector<int>& bodies, const std::vector<Eigen::Isometry3d>& frames,
+                      std::string& why);
+
     template <int N, typename Q, typename Qdot, typename Inertia, typename Bias, typename Jacobian, typename Rate>
     void evaluate_at(const Q& q, const Qdot& qdot, Inertia& inertia, Bias& bias, Jacobian& jacobian, Rate& rate,
                      coopdyn::Pose<double>& contact) const noexcept
@@ -237,40 +246,59 @@ inline std::optional<ChainDynamics> ChainDynamics::from_mujoco(const mjModel* mo
     }
     ChainDynamics chain;
     chain.joint_count_ = static_cast<std::size_t>(count);
-    std::vector<int> bodies;
+    std::vector<int> bodies;                // each joint's body
     std::vector<Eigen::Isometry3d> frames;  // each joint frame in its body's frame
-    for (Index k = 0; k < count; ++k) {
-        const int joint = arms.joint_id(first + k);
+    if (!chain.set_joints(model, arms, first, bodies, frames, why) ||
+        !chain.set_contact(model, arms.contact(arm), bodies.back(), frames.back(), why) ||
+        !chain.set_inertias(model, bodies, frames, why)) {
+        why = name + ": " + why;
+        return std::nullopt;
+    }
+    const bool gravity = (model->opt.disableflags & mjDSBL_GRAVITY) == 0;
+    chain.gravity_ = gravity ? Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(model->opt.gravity)) : Eigen::Vector3d::Zero();
+    return chain;
+}
+
+/// X_k, qpos0 and the armature of each joint, which must be the only hinge of its body and hang from
+/// the previous joint's body (the world for the first) through bodies without joints.
+inline bool ChainDynamics::set_joints(const mjModel* model, const coopdyn::MujocoArms<>& arms, Index first,
+                                      std::vector<int>& bodies, std::vector<Eigen::Isometry3d>& frames, std::string& why)
+{
+    for (std::size_t k = 0; k < joint_count_; ++k) {
+        const int joint = arms.joint_id(first + static_cast<Index>(k));
         const int body = model->jnt_bodyid[joint];
+        const std::string joint_name = "joint " + coopdyn::detail::mujoco_name(model, mjOBJ_JOINT, joint);
         if (model->jnt_type[joint] != mjJNT_HINGE || model->body_jntnum[body] != 1) {
-            why = name + ": joint " + coopdyn::detail::mujoco_name(model, mjOBJ_JOINT, joint) +
-                  " is not the only hinge of its body";
-            return std::nullopt;
+            why = joint_name + " is not the only hinge of its body";
+            return false;
         }
-        const int parent_body = k == 0 ? 0 : bodies.back();
-        const std::optional<Eigen::Isometry3d> path = detail::static_path(model, parent_body, body);
+        const std::optional<Eigen::Isometry3d> path = detail::static_path(model, k == 0 ? 0 : bodies.back(), body);
         if (!path) {
-            why = name + ": joint " + coopdyn::detail::mujoco_name(model, mjOBJ_JOINT, joint) +
-                  " does not hang from the arm's previous joint through bodies without joints";
-            return std::nullopt;
+            why = joint_name + " does not hang from the arm's previous joint through bodies without joints";
+            return false;
         }
         const Eigen::Isometry3d frame = detail::joint_frame(model, joint);
         const Eigen::Isometry3d previous = k == 0 ? Eigen::Isometry3d::Identity() : frames.back().inverse();
         const Eigen::Isometry3d fixed = previous * *path * frame;  // X_k
-        const auto slot = static_cast<std::size_t>(k);
-        chain.fixed_rotation_[slot] = fixed.linear();
-        chain.fixed_translation_[slot] = fixed.translation();
-        chain.reference_[slot] = model->qpos0[model->jnt_qposadr[joint]];
-        chain.armature_(k) = model->dof_armature[model->jnt_dofadr[joint]];
+        fixed_rotation_[k] = fixed.linear();
+        fixed_translation_[k] = fixed.translation();
+        reference_[k] = model->qpos0[model->jnt_qposadr[joint]];
+        armature_(static_cast<Index>(k)) = model->dof_armature[model->jnt_dofadr[joint]];
         bodies.push_back(body);
         frames.push_back(frame);
     }
-    // The contact frame, fixed in the last link.
-    const coopdyn::detail::MujocoContact& contact = arms.contact(arm);
-    const std::optional<Eigen::Isometry3d> contact_body = detail::static_path(model, bodies.back(), contact.body);
-    if (!contact_body || (contact.body != bodies.back() && model->body_jntnum[contact.body] > 0)) {
-        why = name + ": its contact does not move with its last joint alone";
-        return std::nullopt;
+    return true;
+}
+
+/// The contact frame in the last link's joint frame F_n (`last_body`, whose joint frame is
+/// `last_frame`): the contact's body must be that body or hang from it without joints.
+inline bool ChainDynamics::set_contact(const mjModel* model, const coopdyn::detail::MujocoContact& contact, int last_body,
+                                       const Eigen::Isometry3d& last_frame, std::string& why)
+{
+    const std::optional<Eigen::Isometry3d> contact_body = detail::static_path(model, last_body, contact.body);
+    if (!contact_body || (contact.body != last_body && model->body_jntnum[contact.body] > 0)) {
+        why = "its contact does not move with its last joint alone";
+        return false;
     }
     Eigen::Isometry3d contact_local = Eigen::Isometry3d::Identity();
     if (contact.is_site) {
@@ -278,11 +306,17 @@ inline std::optional<ChainDynamics> ChainDynamics::from_mujoco(const mjModel* mo
         contact_local.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
         contact_local.translation() = Eigen::Map<const Eigen::Vector3d>(model->site_pos + 3 * contact.id);
     }
-    const Eigen::Isometry3d contact_frame = frames.back().inverse() * *contact_body * contact_local;
-    chain.contact_point_ = contact_frame.translation();
-    chain.contact_rotation_ = contact_frame.linear();
-    // Every body that moves with one of the arm's links is lumped into that link; a joint outside
-    // the arm's list moving with it cannot be.
+    const Eigen::Isometry3d contact_frame = last_frame.inverse() * *contact_body * contact_local;
+    contact_point_ = contact_frame.translation();
+    contact_rotation_ = contact_frame.linear();
+    return true;
+}
+
+/// Each link's mass, centre and inertia: every body that moves with the link's joint and no later
+/// one, lumped. A body moving with the arm through a joint that is not the arm's cannot be.
+inline bool ChainDynamics::set_inertias(const mjModel* model, const std::vector<int>& bodies,
+                                        const std::vector<Eigen::Isometry3d>& frames, std::string& why)
+{
     std::vector<detail::LumpedInertia> lumped(bodies.size());
     for (int body = 1; body < model->nbody; ++body) {
         const int mover = detail::moving_ancestor(model, body);
@@ -290,9 +324,9 @@ inline std::optional<ChainDynamics> ChainDynamics::from_mujoco(const mjModel* mo
         if (link == bodies.end()) {
             const int parent_mover = mover == 0 ? 0 : detail::moving_ancestor(model, model->body_parentid[mover]);
             if (mover != 0 && std::find(bodies.begin(), bodies.end(), parent_mover) != bodies.end()) {
-                why = name + ": body " + coopdyn::detail::mujoco_name(model, mjOBJ_BODY, mover) +
+                why = "body " + coopdyn::detail::mujoco_name(model, mjOBJ_BODY, mover) +
                       " moves with the arm through a joint that is not the arm's";
-                return std::nullopt;
+                return false;
             }
             continue;
         }
@@ -300,13 +334,11 @@ inline std::optional<ChainDynamics> ChainDynamics::from_mujoco(const mjModel* mo
         lumped[slot].add(model, body, frames[slot].inverse() * *detail::static_path(model, mover, body));
     }
     for (std::size_t k = 0; k < lumped.size(); ++k) {
-        chain.mass_[k] = lumped[k].mass;
-        chain.com_[k] = lumped[k].centre();
-        chain.inertia_[k] = coopdyn::Symmetric3<double>(lumped[k].about_centre());
+        mass_[k] = lumped[k].mass;
+        com_[k] = lumped[k].centre();
+        inertia_[k] = coopdyn::Symmetric3<double>(lumped[k].about_centre());
     }
-    const bool gravity = (model->opt.disableflags & mjDSBL_GRAVITY) == 0;
-    chain.gravity_ = gravity ? Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(model->opt.gravity)) : Eigen::Vector3d::Zero();
-    return chain;
+    return true;
 }
 
 }  // namespace scenes
