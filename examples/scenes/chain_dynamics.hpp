@@ -4,8 +4,8 @@
 // inertias, armature, gravity) and evaluated without MuJoCo, the same quantities as the library's
 // adapter (coopdyn::MujocoArms::read after mj_kinematics, mj_comPos, mj_crb, mj_comVel, mj_rne;
 // test_scenes compares the two at random states to rounding). The rigid scene plant evaluates its
-// arms this way: MuJoCo 2.2.2's stages cost about 5.5 us per evaluation of the three-arm scene's
-// 26 degrees of freedom, this recursion about a fifth of that (docs/performance.md).
+// arms this way: MuJoCo 2.2.2's stages and the read cost about 6.1 us per evaluation of the
+// three-arm scene's 26 degrees of freedom, this recursion 1.6 us (docs/performance.md).
 //
 // Frames. MuJoCo turns a body with a hinge joint about the joint's axis a through its anchor p (both
 // in the body frame B) by theta = q - qpos0: B(theta) = B(0) Trans(p) Rot(a, theta) Trans(-p).
@@ -28,6 +28,7 @@
 #include "../common/sin_cos.hpp"
 
 #include <coopdyn/adapters/mujoco.hpp>
+#include <coopdyn/spatial/inertia.hpp>
 #include <coopdyn/spatial/pose.hpp>
 #include <coopdyn/spatial/symmetric3.hpp>
 
@@ -205,33 +206,18 @@ inline int moving_ancestor(const mjModel* model, int body)
     return b;
 }
 
-/// Mass, first moment and rotational inertia about a frame's origin, summed body by body.
-struct LumpedInertia {
-    double mass = 0.0;
-    Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d about_origin = Eigen::Matrix3d::Zero();
-    /// Adds body b whose frame is `pose` in the lumping frame.
-    void add(const mjModel* model, int body, const Eigen::Isometry3d& pose)
-    {
-        const double m = model->body_mass[body];
-        const mjtNum* q = model->body_iquat + 4 * body;
-        const Eigen::Matrix3d axes =
-            pose.linear() * Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
-        const Eigen::Vector3d centre = pose * Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(model->body_ipos + 3 * body));
-        const Eigen::Vector3d principal = Eigen::Map<const Eigen::Vector3d>(model->body_inertia + 3 * body);
-        mass += m;
-        first_moment += m * centre;
-        // Steiner: I_o = I_c + m (|c|^2 1 - c c^T).
-        about_origin += axes * principal.asDiagonal() * axes.transpose() +
-                        m * (centre.squaredNorm() * Eigen::Matrix3d::Identity() - centre * centre.transpose());
-    }
-    Eigen::Vector3d centre() const { return mass > 0.0 ? Eigen::Vector3d(first_moment / mass) : Eigen::Vector3d::Zero(); }
-    Eigen::Matrix3d about_centre() const
-    {
-        const Eigen::Vector3d c = centre();
-        return about_origin - mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
-    }
-};
+/// Body b's inertia (MuJoCo's body_mass, body_ipos, body_iquat, body_inertia), its frame `pose`
+/// in a link's joint frame, as a spatial inertia about that frame's origin: the links' lumped
+/// inertias are sums of these (coopdyn::SpatialInertia's parallel axes).
+inline coopdyn::SpatialInertia<double> body_inertia(const mjModel* model, int body, const Eigen::Isometry3d& pose)
+{
+    const mjtNum* q = model->body_iquat + 4 * body;
+    const Eigen::Matrix3d axes = pose.linear() * Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+    const Eigen::Vector3d centre = pose * Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(model->body_ipos + 3 * body));
+    const Eigen::Vector3d principal = Eigen::Map<const Eigen::Vector3d>(model->body_inertia + 3 * body);
+    return coopdyn::SpatialInertia<double>::from_centre(model->body_mass[body], centre,
+                                                        coopdyn::Symmetric3<double>::rotated_diagonal(principal, axes));
+}
 
 }  // namespace detail
 
@@ -317,7 +303,7 @@ inline bool ChainDynamics::set_contact(const mjModel* model, const coopdyn::deta
 inline bool ChainDynamics::set_inertias(const mjModel* model, const std::vector<int>& bodies,
                                         const std::vector<Eigen::Isometry3d>& frames, std::string& why)
 {
-    std::vector<detail::LumpedInertia> lumped(bodies.size());
+    std::vector<coopdyn::SpatialInertia<double>> lumped(bodies.size(), coopdyn::SpatialInertia<double>::Zero());
     for (int body = 1; body < model->nbody; ++body) {
         const int mover = detail::moving_ancestor(model, body);
         const auto link = std::find(bodies.begin(), bodies.end(), mover);
@@ -331,12 +317,13 @@ inline bool ChainDynamics::set_inertias(const mjModel* model, const std::vector<
             continue;
         }
         const auto slot = static_cast<std::size_t>(link - bodies.begin());
-        lumped[slot].add(model, body, frames[slot].inverse() * *detail::static_path(model, mover, body));
+        lumped[slot] += detail::body_inertia(model, body, frames[slot].inverse() * *detail::static_path(model, mover, body));
     }
     for (std::size_t k = 0; k < lumped.size(); ++k) {
-        mass_[k] = lumped[k].mass;
-        com_[k] = lumped[k].centre();
-        inertia_[k] = coopdyn::Symmetric3<double>(lumped[k].about_centre());
+        const bool massive = lumped[k].mass() > 0.0;  // a massless link: no centre, its inertia (zero) as is
+        mass_[k] = lumped[k].mass();
+        com_[k] = massive ? lumped[k].centre() : Eigen::Vector3d::Zero();
+        inertia_[k] = massive ? lumped[k].rotational_about_centre() : lumped[k].rotational();
     }
     return true;
 }
