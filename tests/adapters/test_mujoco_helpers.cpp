@@ -123,6 +123,37 @@ TEST(MujocoArmsConstruction, AcceptsAnUnchosenFingerBelowTheArmsAndABodyAsContac
     EXPECT_EQ(arms.joints(), 8);
 }
 
+// A hand's body named where its palm's site was meant (the box's right_link7 carries the site
+// right_palm 0.02 m out on the palm's surface): accepted by default but described as a body frame,
+// naming the site; refused with sites_only.
+TEST(MujocoArmsConstruction, SaysWhetherAContactIsASiteOrABodyAndCanRequireSites)
+{
+    const ModelPointer box = load(COOPDYN_BOX_MJCF);
+    ASSERT_TRUE(box);
+    const coopdyn::MujocoArms<> arms(box.get(), box_joints(), {"left_palm", "right_link7"});
+    EXPECT_EQ(arms.contact_frame_kind(0), coopdyn::MujocoFrameKind::site);
+    EXPECT_EQ(arms.contact_frame_kind(1), coopdyn::MujocoFrameKind::body);
+    EXPECT_EQ(arms.contact_description(0), "site 'left_palm' on body 'left_link7'");
+    EXPECT_EQ(arms.contact_description(1), "body 'right_link7' (no site has that name: the contact frame is the body's "
+                                           "own frame, not a point on its surface; sites on this body: 'right_palm')");
+    const DataPointer data(mj_makeData(box.get()));
+    mj_forward(box.get(), data.get());
+    const coopdyn::MujocoArms<> sites(box.get(), box_joints(), palms, coopdyn::MujocoContactFrames::sites_only);
+    EXPECT_NEAR((sites.contact_position(data.get(), 1) - arms.contact_position(data.get(), 1)).norm(), 0.02, 1e-15);
+
+    try {
+        const coopdyn::MujocoArms<> refused(box.get(), box_joints(), {"left_palm", "right_link7"},
+                                            coopdyn::MujocoContactFrames::sites_only);
+        ADD_FAILURE() << "a body accepted with sites_only";
+    } catch (const coopdyn::InvalidModel& error) {
+        std::printf("    refused: %s\n", error.what());
+        EXPECT_EQ(error.parameter(), "contact_sites[1]");
+        EXPECT_EQ(error.arm(), 1);
+        EXPECT_NE(std::string(error.what()).find("'right_link7' is a body"), std::string::npos);
+        EXPECT_NE(std::string(error.what()).find("'right_palm'"), std::string::npos);
+    }
+}
+
 TEST(MujocoArms, FixedAndDynamicSizesReadTheSameInput)
 {
     const ModelPointer box = load(COOPDYN_BOX_MJCF);

@@ -55,13 +55,18 @@ public:
     /// \param joint_names Q hinge or slide joints, in the order of q (and of M's rows, J's columns).
     /// \param contact_sites K names, one per hand, in the order of J's row blocks: a site, or (when
     ///   no site has the name, e.g. a URDF's fixed link) a body, whose frame is the contact frame:
-    ///   origin the contact point, z the object's inward normal.
-    /// \throws InvalidModel naming the joint or site ("arm i" for sites): a name the model lacks, a
-    ///   joint that is not a hinge or slide or is named twice, a joint or contact that moves with a
-    ///   joint outside joint_names (M, h and J would miss that coupling), counts other than K, Q.
+    ///   origin the contact point, z the object's inward normal. A body's frame is its origin, not
+    ///   a point on its surface (a hand's body named instead of its palm's site puts the contact
+    ///   inside the hand): contact_frame_kind and contact_description say which was used.
+    /// \param frames MujocoContactFrames::sites_only refuses a name that is a body's only.
+    /// \throws InvalidModel naming the joint or site ("arm i" for sites): a name the model lacks (or,
+    ///   with sites_only, names a body), a joint that is not a hinge or slide or is named twice, a
+    ///   joint or contact that moves with a joint outside joint_names (M, h and J would miss that
+    ///   coupling), counts other than K, Q.
     MujocoArms(const mjModel* model, const std::vector<std::string>& joint_names,
-               const std::vector<std::string>& contact_sites)
-        : selection_(counted(model, joint_names, contact_sites), joint_names, contact_sites)
+               const std::vector<std::string>& contact_sites,
+               MujocoContactFrames frames = MujocoContactFrames::sites_or_bodies)
+        : selection_(counted(model, joint_names, contact_sites), joint_names, contact_sites, frames)
     {
     }
 
@@ -72,6 +77,15 @@ public:
     int dof_address(Index j) const noexcept { return selection_.joint(j).dof; }
     int qpos_address(Index j) const noexcept { return selection_.joint(j).qpos; }
     const detail::MujocoContact& contact(Index i) const noexcept { return selection_.contact(i); }
+    /// Whether contact i's frame is a site or a body's own frame (a name no site has).
+    MujocoFrameKind contact_frame_kind(Index i) const noexcept
+    {
+        return contact(i).is_site ? MujocoFrameKind::site : MujocoFrameKind::body;
+    }
+    /// What contact i's frame is, for logs and checks: "site 'left_palm' on body 'left_link7'", or
+    /// "body 'left_link7' (no site has that name: the contact frame is the body's own frame, not a
+    /// point on its surface; sites on this body: 'left_palm')".
+    const std::string& contact_description(Index i) const noexcept { return selection_.contact_description(i); }
 
     /// \brief Fills input.inertia, bias, jacobian, jacobian_rate_qdot, positions and velocities,
     /// and the contacts' poses (read_contact_poses; the object's state and the desired motion are

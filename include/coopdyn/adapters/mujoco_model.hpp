@@ -51,6 +51,15 @@ inline RigidBodyState<double> mujoco_object_state(const mjModel* model, const mj
     return state;
 }
 
+/// \brief What a MujocoArms contact frame is (MujocoArms::contact_frame_kind): a site, or a body's
+/// own frame (its origin and axes: a URDF's fixed link, or a body named where a site was meant).
+enum class MujocoFrameKind { site, body };
+
+/// \brief Which names MujocoArms accepts as contact frames: a site or, when no site has the name, a
+/// body (the default; URDF has no sites), or sites only (a body's name is refused, so that a hand's
+/// body cannot stand in for the site on its palm's surface). docs/adapters.md, "Construction".
+enum class MujocoContactFrames { sites_or_bodies, sites_only };
+
 namespace detail {
 
 /// A joint of the selection: its id and its (single) dof and qpos addresses.
@@ -81,6 +90,19 @@ inline std::string mujoco_name(const mjModel* model, mjtObj type, int id)
     return name != nullptr ? "'" + std::string(name) + "'" : "#" + std::to_string(id);
 }
 
+/// "; sites on this body: 'a', 'b'" (or "; this body has no site"): where a body was named instead
+/// of a site, the sites the user may have meant.
+inline std::string mujoco_sites_on_body(const mjModel* model, int body)
+{
+    std::string sites;
+    for (int site = 0; site < model->nsite; ++site) {
+        if (model->site_bodyid[site] == body) {
+            sites += (sites.empty() ? "; sites on this body: " : ", ") + mujoco_name(model, mjOBJ_SITE, site);
+        }
+    }
+    return sites.empty() ? "; this body has no site" : sites;
+}
+
 inline int mujoco_body_id(const mjModel* model, const std::string& name)
 {
     const int id = mj_name2id(model, mjOBJ_BODY, name.c_str());
@@ -95,20 +117,26 @@ inline int mujoco_body_id(const mjModel* model, const std::string& name)
 class MujocoSelection {
 public:
     MujocoSelection(const mjModel* model, const std::vector<std::string>& joint_names,
-                    const std::vector<std::string>& contact_names)
+                    const std::vector<std::string>& contact_names,
+                    MujocoContactFrames frames = MujocoContactFrames::sites_or_bodies)
     {
         if (model == nullptr) {
             throw InvalidModel("MuJoCo arms", "model", no_arm, "is null");
         }
         nv_ = model->nv;
         select_joints(model, joint_names);
-        select_contacts(model, contact_names);
+        select_contacts(model, contact_names, frames);
     }
 
     Index joints() const noexcept { return static_cast<Index>(joints_.size()); }
     Index arms() const noexcept { return static_cast<Index>(contacts_.size()); }
     const MujocoJoint& joint(Index j) const noexcept { return joints_[static_cast<std::size_t>(j)]; }
     const MujocoContact& contact(Index i) const noexcept { return contacts_[static_cast<std::size_t>(i)]; }
+    /// "site 'left_palm' on body 'left_link7'", or "body 'link7' (no site has that name: ...)".
+    const std::string& contact_description(Index i) const noexcept
+    {
+        return contact_descriptions_[static_cast<std::size_t>(i)];
+    }
 
     /// M's rows and columns of the chosen dofs, from MuJoCo's sparse qM: row d holds, from
     /// dof_Madr[d] on, M(d, d) and then M(d, a) for the dof's ancestors a (dof_parentid), the only
@@ -226,7 +254,7 @@ private:
         }
     }
 
-    void select_contacts(const mjModel* model, const std::vector<std::string>& names)
+    void select_contacts(const mjModel* model, const std::vector<std::string>& names, MujocoContactFrames frames)
     {
         if (names.empty()) {
             throw InvalidModel("MuJoCo arms", "contact_sites", no_arm, "is empty");
@@ -239,14 +267,31 @@ private:
             contact.id = mj_name2id(model, mjOBJ_SITE, names[i].c_str());
             if (contact.id >= 0) {
                 contact.body = model->site_bodyid[contact.id];
+                contact_descriptions_.push_back("site '" + names[i] + "' on body " +
+                                                mujoco_name(model, mjOBJ_BODY, contact.body));
             } else {
-                // No site: a body's frame (URDF has no sites; a fixed link kept as a body).
+                // No site: a body's frame (URDF has no sites; a fixed link kept as a body). Its
+                // origin is wherever the body's frame is, often inside the hand (a palm's site sits
+                // on the surface): said in the description, refused with sites_only.
                 contact.is_site = false;
                 contact.id = mj_name2id(model, mjOBJ_BODY, names[i].c_str());
                 contact.body = contact.id;
-            }
-            if (contact.id < 0) {
-                throw InvalidModel("MuJoCo arms", parameter, arm, "names no site or body of the model: '" + names[i] + "'");
+                if (contact.id < 0) {
+                    throw InvalidModel("MuJoCo arms", parameter, arm,
+                                       (frames == MujocoContactFrames::sites_only ? "names no site of the model: '"
+                                                                                  : "names no site or body of the model: '") +
+                                           names[i] + "'");
+                }
+                const std::string sites = mujoco_sites_on_body(model, contact.body);
+                if (frames == MujocoContactFrames::sites_only) {
+                    throw InvalidModel("MuJoCo arms", parameter, arm,
+                                       "names no site of the model: '" + names[i] +
+                                           "' is a body, whose own frame is not a point on its surface" + sites +
+                                           " (MujocoContactFrames::sites_only refuses bodies)");
+                }
+                contact_descriptions_.push_back("body '" + names[i] +
+                                                "' (no site has that name: the contact frame is the body's own frame, "
+                                                "not a point on its surface" + sites + ")");
             }
             for (int body = contact.body; body > 0; body = model->body_parentid[body]) {
                 for (int k = 0; k < model->body_dofnum[body]; ++k) {
@@ -273,8 +318,9 @@ private:
     int nv_ = 0;
     std::vector<MujocoJoint> joints_;
     std::vector<MujocoContact> contacts_;
-    std::vector<Index> column_of_dof_;      ///< per dof of the model: its column in q, or -1
-    std::vector<int> chain_dofs_;           ///< per contact, the dofs that move it (all chosen)
+    std::vector<std::string> contact_descriptions_;  ///< per contact, what its frame is
+    std::vector<Index> column_of_dof_;               ///< per dof of the model: its column in q, or -1
+    std::vector<int> chain_dofs_;                    ///< per contact, the dofs that move it (all chosen)
     std::vector<std::size_t> chain_begin_;  ///< contact i's chain: chain_dofs_[chain_begin_[i], chain_begin_[i + 1])
 };
 
