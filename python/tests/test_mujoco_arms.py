@@ -174,11 +174,26 @@ def test_errors_name_the_joint_and_the_site(tmp_path):
     parameters = coopdyn.ControllerParameters()
     parameters.joints = 13
     parameters.contacts = [coopdyn.ContactPoint(), coopdyn.ContactPoint()]
+    parameters.check_contact_normals = False  # both frames at the centre: only the sizes matter here
     parameters.posture_stiffness = parameters.posture_damping = np.zeros(13)
     with pytest.raises(coopdyn.InvalidArgument, match="13 joints"):
         arms.read(coopdyn.ControllerInput(coopdyn.ControllerModel(parameters)))
     with pytest.raises(coopdyn.InvalidArgument, match="keyframe"):
         arms.reset("no_such_key")
+
+
+def test_a_body_named_for_a_site_is_described_or_refused():
+    """The box's right_link7 named where its palm's site right_palm (0.02 m out) was meant."""
+    arms = coopdyn.MujocoArms(BOX, BOX_JOINTS, ["left_palm", "right_link7"])
+    assert [arms.contact_frame_kind(i) for i in range(2)] == ["site", "body"]
+    assert arms.contact_description(0) == "site 'left_palm' on body 'left_link7'"
+    assert arms.contact_description(1).startswith("body 'right_link7' (no site has that name")
+    assert "sites on this body: 'right_palm'" in arms.contact_description(1)
+    assert np.linalg.norm(arms.contact_position(1) - box_arms().contact_position(1)) == pytest.approx(0.02, abs=1e-15)
+    assert urdf_arms().contact_frame_kind(0) == "body"  # URDF: a fixed link's frame
+    with pytest.raises(coopdyn.InvalidModel, match="'right_link7' is a body") as error:
+        coopdyn.MujocoArms(BOX, BOX_JOINTS, ["left_palm", "right_link7"], sites_only=True)
+    assert error.value.arm == 1 and error.value.parameter == "contact_sites[1]"
 
 
 def box_controller(arms):

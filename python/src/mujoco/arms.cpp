@@ -143,10 +143,24 @@ void bind_arms(py::module_& module)
         "K contact points on arms moved by Q hinge or slide joints of a MuJoCo model, read into a ControllerInput "
         "(C++ coopdyn::MujocoArms, docs/adapters.md). Loads the MJCF or URDF file itself (mj_loadXML) and owns "
         "its model and data, at the model's initial state (qpos0, mj_forward).");
-    arms.def(py::init<const std::string&, const std::vector<std::string>&, const std::vector<std::string>&>(),
-             py::arg("model_path"), py::arg("joint_names"), py::arg("contact_sites"),
-             "joint_names: Q joints in q's order; contact_sites: K sites (or bodies), one per hand, z into the "
-             "object. Raises coopdyn.InvalidModel naming the joint or site (docs/adapters.md, \"Construction\").");
+    arms.def(py::init([](const std::string& path, const std::vector<std::string>& joints,
+                         const std::vector<std::string>& sites, bool sites_only) {
+                 return new OwnedArms(path, joints, sites,
+                                      sites_only ? MujocoContactFrames::sites_only : MujocoContactFrames::sites_or_bodies);
+             }),
+             py::arg("model_path"), py::arg("joint_names"), py::arg("contact_sites"), py::arg("sites_only") = false,
+             "joint_names: Q joints in q's order; contact_sites: K sites (or bodies: a name no site has is a body's "
+             "own frame; sites_only=True refuses them), one per hand, z into the object. Raises "
+             "coopdyn.InvalidModel naming the joint or site (docs/adapters.md, \"Construction\").");
+    arms.def("contact_frame_kind",
+             [](const OwnedArms& self, Index i) {
+                 return self.arms().contact_frame_kind(contact_index(self, i)) == MujocoFrameKind::site ? "site" : "body";
+             },
+             py::arg("i"), "\"site\" or \"body\": what contact i's frame is (a body's own frame, not its surface).");
+    arms.def("contact_description",
+             [](const OwnedArms& self, Index i) { return self.arms().contact_description(contact_index(self, i)); },
+             py::arg("i"), "What contact i's frame is: \"site 'left_palm' on body 'left_link7'\", or \"body ... (no site "
+             "has that name: ...)\" naming the body's sites.");
     arms.def_property_readonly("arms", [](const OwnedArms& self) { return self.arms().arms(); }, "K");
     arms.def_property_readonly("joints", [](const OwnedArms& self) { return self.arms().joints(); }, "Q");
     arms.def_property_readonly("nq", [](const OwnedArms& self) { return self.model()->nq; });

@@ -42,8 +42,10 @@ inline mjModel* load_model(const std::string& path)
 class OwnedArms {
 public:
     OwnedArms(const std::string& path, const std::vector<std::string>& joint_names,
-              const std::vector<std::string>& contact_sites)
-        : model_(load_model(path)), data_(mj_makeData(model_.get())), arms_(model_.get(), joint_names, contact_sites)
+              const std::vector<std::string>& contact_sites,
+              MujocoContactFrames frames = MujocoContactFrames::sites_or_bodies)
+        : model_(load_model(path)), data_(mj_makeData(model_.get())),
+          arms_(model_.get(), joint_names, contact_sites, frames)
     {
         mj_forward(model_.get(), data_.get());
     }
