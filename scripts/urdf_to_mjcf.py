@@ -20,12 +20,24 @@ site <prefix>LINK_contact at the plate's outer face: the contact frame, z = the 
 Every geom has contype = conaffinity = 0 (the scene's explicit <pair>s are the only contacts) and no
 mass (the scene's compiler must say inertiafromgeom="false"). Every name gets --prefix in front.
 Standard library only (no numpy, no MuJoCo).
+
+Inertias are checked (docs/scenes.md, "Physically impossible inertias"): each <inertial> needs a
+finite mass > 0 and a finite tensor whose principal moments are > 0 and satisfy the triangle
+inequality I1 + I2 >= I3 (sorted; the two smaller moments of any body sum to at least the largest:
+I1 + I2 - I3 = 2 * the second moment of mass along the third axis). A link that fails is named with
+its principal moments and the failed inequality, and nothing is written (exit code 1). With
+--fix-inertia a broken triangle inequality is repaired minimally: the two smaller moments are raised
+by half the shortfall each, the largest and the principal axes kept (the negative second moment of
+mass set to zero, the other two kept), and the change is printed. A shortfall within rounding (1e-12
+of I3: a flat body's tensor after diagonalisation) is repaired that way without the flag, with a note.
 """
 
 import argparse
 import math
 import sys
 import xml.etree.ElementTree as ET
+
+ROUNDING = 1e-12  # a triangle shortfall below ROUNDING * I3 is the diagonalisation's rounding
 
 
 def number(x):
@@ -106,6 +118,26 @@ def jacobi_eigen(a):
     return [a[0][0], a[1][1], a[2][2]], v
 
 
+def moments_text(values):
+    return ", ".join("%.6g" % v for v in values)
+
+
+def balance_triangle(moments):
+    """The principal moments with I1 + I2 >= I3 restored minimally: the two smaller ones raised by half
+    the shortfall each (the second moment of mass along the largest moment's axis, (I1 + I2 - I3) / 2,
+    from negative to zero; the other two second moments kept), the largest kept; then nudged up by
+    the last bit where rounding would leave the sum short."""
+    k = max(range(3), key=lambda n: moments[n])
+    i, j = [n for n in range(3) if n != k]
+    shortfall = moments[k] - moments[i] - moments[j]
+    fixed = list(moments)
+    fixed[i] += shortfall / 2.0
+    fixed[j] += shortfall / 2.0
+    while fixed[i] + fixed[j] < fixed[k]:
+        fixed[j] = math.nextafter(fixed[j], math.inf)
+    return fixed
+
+
 def origin(element):
     """(xyz, R) of an <origin> child (identity when absent)."""
     node = element.find("origin") if element is not None else None
@@ -130,6 +162,8 @@ class Converter:
             sys.exit("urdf_to_mjcf: expected one root link, found %s" % roots)
         self.root_link = roots[0]
         self.palm_found = False
+        self.errors = []    # links whose inertia is refused (all reported, nothing written)
+        self.repaired = []  # links whose inertia was repaired (--fix-inertia or rounding)
 
     def name(self, name):
         return self.args.prefix + name
@@ -138,16 +172,64 @@ class Converter:
         node = link.find("inertial")
         if node is None:
             return
-        mass = float(node.find("mass").get("value"))
-        tensor = node.find("inertia")
-        get = lambda key: float(tensor.get(key, "0"))
-        inertia = [[get("ixx"), get("ixy"), get("ixz")], [get("ixy"), get("iyy"), get("iyz")],
-                   [get("ixz"), get("iyz"), get("izz")]]
+        where = "link '%s'" % link.get("name")
+        mass_node, tensor = node.find("mass"), node.find("inertia")
+        try:
+            mass = float(mass_node.get("value")) if mass_node is not None else math.nan
+            get = lambda key: float(tensor.get(key, "0")) if tensor is not None else 0.0
+            inertia = [[get("ixx"), get("ixy"), get("ixz")], [get("ixy"), get("iyy"), get("iyz")],
+                       [get("ixz"), get("iyz"), get("izz")]]
+        except (TypeError, ValueError) as error:
+            self.errors.append("%s: <inertial> holds a value that is not a number (%s)" % (where, error))
+            return
+        if not (math.isfinite(mass) and mass > 0.0):
+            self.errors.append("%s: mass %s must be finite and > 0 (a massless link has no <inertial>)" %
+                               (where, mass_node.get("value") if mass_node is not None else "missing"))
+            return
+        if not all(math.isfinite(v) for row in inertia for v in row):
+            self.errors.append("%s: the inertia tensor %s is not finite" % (where, tensor.attrib))
+            return
         xyz, rotation = origin(node)
         in_link = matmul(rotation, matmul(inertia, transpose(rotation)))  # the tensor in the link frame
         moments, axes = jacobi_eigen(in_link)
+        moments = self.checked_moments(where, moments)
+        if moments is None:
+            return
         ET.SubElement(body, "inertial", {"pos": numbers(xyz), "quat": numbers(quaternion(axes)),
                                          "mass": number(mass), "diaginertia": numbers(moments)})
+
+    def checked_moments(self, where, moments):
+        """The principal moments to write, or None (and an error) when the tensor is not physical."""
+        ordered = sorted(moments)
+        if ordered[0] <= 0.0:
+            self.errors.append(
+                "%s: physically impossible inertia: principal moments %s kg m^2 must all be > 0 (the tensor "
+                "is not positive definite); --fix-inertia does not repair this: correct the URDF" %
+                (where, moments_text(ordered)))
+            return None
+        shortfall = ordered[2] - ordered[0] - ordered[1]
+        if shortfall <= 0.0:
+            return moments
+        fixed = balance_triangle(moments)
+        change = "the two smaller raised by %.3g each to %s kg m^2, the largest kept" % (
+            shortfall / 2.0, moments_text(sorted(fixed)))
+        if shortfall > ROUNDING * ordered[2] and not self.args.fix_inertia:
+            self.errors.append(
+                "%s: physically impossible inertia: principal moments %s kg m^2 break the triangle inequality "
+                "I1 + I2 >= I3 (%.6g + %.6g = %.6g < %.6g, short by %.3g; no mass distribution has these, and "
+                "MuJoCo refuses them). Correct the URDF, or pass --fix-inertia for the smallest repair: %s" %
+                (where, moments_text(ordered), ordered[0], ordered[1], ordered[0] + ordered[1], ordered[2],
+                 shortfall, change))
+            return None
+        if shortfall > ROUNDING * ordered[2]:
+            print("urdf_to_mjcf: %s: --fix-inertia: principal moments %s kg m^2 broke I1 + I2 >= I3 by %.3g: %s" %
+                  (where, moments_text(ordered), shortfall, change))
+        else:
+            print("urdf_to_mjcf: note: %s: principal moments %s kg m^2 missed I1 + I2 >= I3 by %.3g, the rounding "
+                  "of a flat body's tensor: the two smaller raised by half that each" %
+                  (where, moments_text(ordered), shortfall))
+        self.repaired.append(where)
+        return fixed
 
     def palm(self, body, link_name):
         size, thickness = self.args.palm_size, self.args.palm_thickness
@@ -199,6 +281,11 @@ class Converter:
              " --prefix " + self.args.prefix if self.args.prefix else ""))
         mujoco.append(comment)
         self.body(mujoco, self.root_link, None)
+        if self.errors:
+            sys.exit("\n".join("urdf_to_mjcf: " + error for error in self.errors))
+        if self.repaired:
+            comment.text += "Repaired (I1 + I2 >= I3, the two smaller principal moments raised): %s. " % ", ".join(
+                self.repaired)
         if self.args.palm and not self.palm_found:
             sys.exit("urdf_to_mjcf: no link named %s" % self.args.palm)
         ET.indent(mujoco, space="  ")
@@ -214,6 +301,9 @@ def main():
     parser.add_argument("--palm-size", type=float, default=0.08, help="plate side (m), default 0.08")
     parser.add_argument("--palm-thickness", type=float, default=0.02, help="plate thickness (m), default 0.02")
     parser.add_argument("--source-name", default="", help="the URDF's path as written in the comment")
+    parser.add_argument("--fix-inertia", action="store_true",
+                        help="repair principal moments that break I1 + I2 >= I3 (the two smaller raised by half the "
+                             "shortfall each) and print the change, instead of refusing them")
     args = parser.parse_args()
     converter = Converter(ET.parse(args.urdf).getroot(), args)
     text = converter.document(args.source_name or args.urdf)
