@@ -1,6 +1,7 @@
 # Install test driver, run by ctest as `cmake -D... -P run_install_test.cmake`.
 #
-#   1. cmake --install <build tree> into a scratch prefix
+#   1. cmake --install <build tree> (the library's component) into a scratch prefix; every file
+#      it wrote under the prefix, every header of include/coopdyn among them
 #   2. configure + build tests/install against it via CMAKE_PREFIX_PATH
 #   3. run the consumer
 #   4. if pkg-config exists: check `pkg-config --cflags coopdyn`
@@ -34,8 +35,32 @@ set(config_args "")
 if(COOPDYN_CONFIG)
   set(config_args --config "${COOPDYN_CONFIG}")
 endif()
+# The library's component alone (the Python package, component python, has a test of its own:
+# run_python_install_test.cmake), and every file it wrote must be under the prefix.
+set(manifest "${COOPDYN_BUILD_DIR}/install_manifest_Unspecified.txt")
+file(REMOVE "${manifest}")
 run_step("cmake --install"
-  "${CMAKE_COMMAND}" --install "${COOPDYN_BUILD_DIR}" --prefix "${prefix}" ${config_args})
+  "${CMAKE_COMMAND}" --install "${COOPDYN_BUILD_DIR}" --component Unspecified --prefix "${prefix}" ${config_args})
+file(REAL_PATH "${prefix}" real_prefix)
+file(STRINGS "${manifest}" installed)
+set(headers 0)
+foreach(path IN LISTS installed)
+  string(FIND "${path}" "${real_prefix}/" at)
+  string(FIND "${path}" "${prefix}/" at_given)
+  if(NOT at EQUAL 0 AND NOT at_given EQUAL 0)
+    message(FATAL_ERROR "install test: ${path} is outside the prefix ${prefix}")
+  endif()
+  if(path MATCHES "/include/coopdyn/.*\\.hpp$")
+    math(EXPR headers "${headers} + 1")
+  endif()
+endforeach()
+# Every header of the source tree's include/coopdyn, no more and no fewer.
+get_filename_component(source_dir "${COOPDYN_CONSUMER_DIR}/../.." ABSOLUTE)
+file(GLOB_RECURSE source_headers "${source_dir}/include/coopdyn/*.hpp")
+list(LENGTH source_headers source_count)
+if(NOT headers EQUAL source_count)
+  message(FATAL_ERROR "install test: ${headers} headers installed, the source tree has ${source_count}")
+endif()
 
 # 2. configure + build the consumer
 set(configure_args -S "${COOPDYN_CONSUMER_DIR}" -B "${consumer_build}"
