@@ -13,7 +13,8 @@
 //   and by physics: its gravity part against the gradient of the bodies' potential energy, its
 //   velocity part by qdot^T C qdot = 1/2 qdot^T Mdot qdot;
 // - nothing of the object or the other robot leaks into M, h, J, Jdot qdot;
-// - read() allocates nothing and leaves every byte of mjData as it was;
+// - read() allocates nothing and leaves every byte of mjData as it was; neither do a push and the
+//   palms' contact wrenches allocate;
 // - the construction errors name the joint or site;
 // - the contact points in the object's frame and the inverse kinematics (to 1e-9 on the box).
 #include "../allocation_counter.hpp"
@@ -417,6 +418,33 @@ TEST_P(Conformance, ReadAllocatesNothingAndLeavesDataAsItWas)
     EXPECT_EQ(allocations.eigen, 0);
     EXPECT_EQ(std::memcmp(before.data(), data_->buffer, before.size()), 0);
     EXPECT_EQ(std::memcmp(stack_before.data(), data_->stack, stack_before.size()), 0);
+}
+
+// The forces' per-tick functions (coopdyn/adapters/mujoco_forces.hpp): a push at a point and the
+// palms' contact wrenches on the dual-arm box, its palms pressed 0.5 mm into it (four contacts
+// each), allocate nothing; the values are checked in test_mujoco_helpers.cpp.
+TEST(MujocoForces, PushingAndReadingContactWrenchesAllocateNothing)
+{
+    const ModelPointer model = load(COOPDYN_BOX_MJCF);
+    ASSERT_TRUE(model);
+    const DataPointer data(mj_makeData(model.get()));
+    const int geom = mj_name2id(model.get(), mjOBJ_GEOM, "box_geom");
+    model->geom_size[3 * geom + 1] += 0.0005;
+    mj_resetDataKeyframe(model.get(), data.get(), mj_name2id(model.get(), mjOBJ_KEY, "hold"));
+    mj_forward(model.get(), data.get());
+    const Arms arms(model.get(), box_joints(), {"left_palm", "right_palm"});
+    coopdyn::MujocoContactWrenches<> wrenches(2);
+    const int box = mj_name2id(model.get(), mjOBJ_BODY, "box");
+    const coopdyn::Vector6<double> push = (coopdyn::Vector6<double>() << 0, 0, -20, 0, 0, 0).finished();
+    const Eigen::Vector3d point(0.4, 0.0, 1.5);
+    const mjModel* constant = model.get();
+    const auto allocations = allocation_counter::count_allocations([&] {
+        coopdyn::mujoco_set_applied_wrench(constant, data.get(), box, push, point);
+        arms.read_contact_wrenches(constant, data.get(), box, wrenches);
+    });
+    EXPECT_EQ(allocations.operator_new, 0);
+    EXPECT_EQ(allocations.eigen, 0);
+    EXPECT_EQ(wrenches.points.sum(), 8);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, Conformance, ::testing::Values(box_case(), torso_case(), urdf_case()),

@@ -1,18 +1,22 @@
 // The MuJoCo adapter's construction checks and helpers (coopdyn/adapters/mujoco.hpp,
 // docs/adapters.md): every refused selection named, fixed and dynamic sizes giving the same
 // input, the contact points in the object's frame (where the palms touch the box's faces), the
-// object's state against its free joint, and the inverse kinematics (reachable targets to 1e-9,
-// unreachable ones reported, joint ranges kept). The conformance of read() is in
+// object's state against its free joint, the inverse kinematics (reachable targets to 1e-9,
+// unreachable ones reported, joint ranges kept, bad targets and options refused), a wrench applied
+// at a point against MuJoCo's mj_applyFT, and the palms' contact wrenches against Newton and Euler
+// on a pushed, squeezed box. The conformance of read() is in
 // test_mujoco_adapter.cpp.
 #include <coopdyn/adapters/mujoco.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -319,6 +323,181 @@ TEST(DampedLeastSquares, SolvesASmallNonlinearSystemAndReportsAnInconsistentOne)
     result = coopdyn::numerics::damped_least_squares(circle(-1.0), none, x);
     EXPECT_FALSE(result.converged());
     EXPECT_GT(result.residual, 1.0);
+}
+
+// --- Applied wrenches and contact forces (coopdyn/adapters/mujoco_forces.hpp, docs/adapters.md) ---
+
+/// The accelerations mj_forward gives (all dofs).
+Eigen::VectorXd forward_acceleration(const mjModel* model, mjData* data)
+{
+    mj_forward(model, data);
+    return Eigen::Map<const Eigen::VectorXd>(data->qacc, model->nv);
+}
+
+TEST(MujocoForces, AWrenchAtAPointIsMujocosOwnForceAtThatPoint)
+{
+    // The reference is MuJoCo's mj_applyFT (a force and torque at a point of a body, as joint
+    // forces), on the torso model's free object (its centre of mass off its frame) and on an arm's
+    // hand, at a random state with the object turned.
+    const ModelPointer torso = load(COOPDYN_ADAPTER_DIR "/torso_arms.xml");
+    ASSERT_TRUE(torso);
+    const DataPointer data(mj_makeData(torso.get()));
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (int k = 7; k < torso->nq; ++k) {
+        data->qpos[k] += 0.3 * unit(random);
+    }
+    for (int k = 0; k < torso->nv; ++k) {
+        data->qvel[k] = unit(random);
+    }
+    const Eigen::Quaterniond turn(Eigen::AngleAxisd(0.8, Eigen::Vector3d(1, -2, 0.5).normalized()));
+    data->qpos[3] = turn.w();
+    data->qpos[4] = turn.x();
+    data->qpos[5] = turn.y();
+    data->qpos[6] = turn.z();
+    double worst = 0.0;
+    for (const char* name : {"object", "left_hand"}) {
+        const int body = mj_name2id(torso.get(), mjOBJ_BODY, name);
+        coopdyn::Vector6<double> wrench;
+        wrench << 3.0 * unit(random), 3.0 * unit(random), 3.0 * unit(random), unit(random), unit(random), unit(random);
+        mj_kinematics(torso.get(), data.get());
+        const Eigen::Vector3d point = Eigen::Map<const Eigen::Vector3d>(data->xpos + 3 * body) +
+                                      0.2 * Eigen::Vector3d(unit(random), unit(random), unit(random));
+        coopdyn::mujoco_set_applied_wrench(torso.get(), data.get(), body, wrench, point);
+        const Eigen::VectorXd ours = forward_acceleration(torso.get(), data.get());
+        coopdyn::mujoco_clear_applied_wrenches(torso.get(), data.get());
+        EXPECT_EQ(coopdyn::mujoco_applied_wrench(torso.get(), data.get(), body).norm(), 0.0);
+        mju_zero(data->qfrc_applied, torso->nv);
+        mj_applyFT(torso.get(), data.get(), wrench.data(), wrench.data() + 3, point.data(), body, data->qfrc_applied);
+        const Eigen::VectorXd mujocos = forward_acceleration(torso.get(), data.get());
+        mju_zero(data->qfrc_applied, torso->nv);
+        worst = std::max(worst, (ours - mujocos).norm() / mujocos.norm());
+        // At the centre of mass the point form is the plain one.
+        coopdyn::mujoco_set_applied_wrench(torso.get(), data.get(), body, wrench,
+                                           Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(data->xipos + 3 * body)));
+        EXPECT_EQ((coopdyn::mujoco_applied_wrench(torso.get(), data.get(), body) - wrench).norm(), 0.0);
+        coopdyn::mujoco_clear_applied_wrenches(torso.get(), data.get());
+    }
+    EXPECT_LT(worst, 1e-14);
+    std::printf("applied wrench at a point against mj_applyFT: %.2g (relative, accelerations)\n", worst);
+}
+
+/// The dual-arm box at its hold, the box 1 mm wider (each palm pressed 0.5 mm into it), pushed.
+struct SqueezedBox : BoxAtHold {
+    int box = mj_name2id(model.get(), mjOBJ_BODY, "box");
+    coopdyn::Vector6<double> push = (coopdyn::Vector6<double>() << 2.0, -1.0, -3.0, 0.05, 0.1, -0.02).finished();
+    SqueezedBox()
+    {
+        const int geom = mj_name2id(model.get(), mjOBJ_GEOM, "box_geom");
+        model->geom_size[3 * geom + 1] += 0.0005;
+        model->geom_rbound[geom] = Eigen::Map<const Eigen::Vector3d>(model->geom_size + 3 * geom).norm();
+        coopdyn::mujoco_set_applied_wrench(model.get(), data.get(), box, push);
+        mj_forward(model.get(), data.get());
+    }
+};
+
+/// Newton and Euler for the box (at rest: no gyroscopic term): the palms' wrenches, its weight and
+/// the push against m a and I alpha, from MuJoCo's qacc; the worst residual (N, N m).
+template <int K>
+double box_balance(const SqueezedBox& box, const coopdyn::MujocoArms<K, 14>& arms, const coopdyn::MujocoContactWrenches<K>& measured)
+{
+    const mjModel* model = box.model.get();
+    const mjData* data = box.data.get();
+    const double mass = model->body_mass[box.box];
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> frame(data->xmat + 9 * box.box);
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> inertial(data->ximat + 9 * box.box);
+    const Eigen::Vector3d centre = Eigen::Map<const Eigen::Vector3d>(data->xipos + 3 * box.box);
+    const Eigen::Vector3d origin = Eigen::Map<const Eigen::Vector3d>(data->xpos + 3 * box.box);
+    const Eigen::Vector3d alpha = frame * Eigen::Map<const Eigen::Vector3d>(data->qacc + 17);  // free joint: body axes
+    const Eigen::Vector3d acceleration = Eigen::Map<const Eigen::Vector3d>(data->qacc + 14) + alpha.cross(centre - origin);
+    const Eigen::Matrix3d inertia =
+        inertial * Eigen::Map<const Eigen::Vector3d>(model->body_inertia + 3 * box.box).asDiagonal() * inertial.transpose();
+    Eigen::Vector3d force = mass * Eigen::Map<const Eigen::Vector3d>(model->opt.gravity) + box.push.head<3>();
+    Eigen::Vector3d moment = box.push.tail<3>();
+    for (Index i = 0; i < 2; ++i) {
+        force += measured.world.template block<3, 1>(0, i);
+        moment += measured.world.template block<3, 1>(3, i) +
+                  (arms.contact_position(data, i) - centre).cross(measured.world.template block<3, 1>(0, i));
+    }
+    return std::max((mass * acceleration - force).norm(), (inertia * alpha - moment).norm());
+}
+
+TEST(MujocoForces, PalmWrenchesBalanceThePushedBoxInEitherGeomOrder)
+{
+    SqueezedBox box;
+    const coopdyn::MujocoArms<2, 14> fixed(box.model.get(), box_joints(), palms);
+    const coopdyn::MujocoArms<> dynamic(box.model.get(), box_joints(), palms);
+    coopdyn::MujocoContactWrenches<2> measured;
+    coopdyn::MujocoContactWrenches<> measured_dynamic(2);
+    fixed.read_contact_wrenches(box.model.get(), box.data.get(), box.box, measured);
+    dynamic.read_contact_wrenches(box.model.get(), box.data.get(), box.box, measured_dynamic);
+    EXPECT_EQ((measured.world - measured_dynamic.world).norm(), 0.0);
+    EXPECT_EQ((measured.contact_frame - measured_dynamic.contact_frame).norm(), 0.0);
+    const double balance = box_balance(box, fixed, measured);
+    double normal_gap = 0.0;
+    for (Index i = 0; i < 2; ++i) {
+        EXPECT_EQ(measured.points(i), 4) << i;  // MuJoCo's box-box contact: the palm's four corners
+        EXPECT_GT(measured.contact_frame(2, i), 10.0) << i;
+        // The palms lie flat on the faces: their z is MuJoCo's contact normal.
+        normal_gap = std::max(normal_gap, std::abs(measured.contact_frame(2, i) - measured.normal_forces(i)));
+        // Back from the contact frame: [R f; R t] is the world wrench.
+        const Eigen::Matrix3d rotation = fixed.contact_rotation(box.data.get(), i);
+        EXPECT_LT((rotation * measured.contact_frame.block<3, 1>(0, i) - measured.world.block<3, 1>(0, i)).norm(), 1e-12);
+    }
+    EXPECT_LT(balance, 1e-12);
+    EXPECT_LT(normal_gap, 1e-12);
+    std::printf("pushed box: normal forces %.2f, %.2f N; Newton-Euler residual %.2g; contact z against MuJoCo's "
+                "normals %.2g N\n",
+                measured.contact_frame(2, 0), measured.contact_frame(2, 1), balance, normal_gap);
+
+    // The left pair with its geoms swapped (box first): the same physics, the other sign in the sum.
+    const int pair = 0;
+    std::swap(box.model->pair_geom1[pair], box.model->pair_geom2[pair]);
+    mj_forward(box.model.get(), box.data.get());
+    coopdyn::MujocoContactWrenches<2> swapped;
+    fixed.read_contact_wrenches(box.model.get(), box.data.get(), box.box, swapped);
+    const double swapped_balance = box_balance(box, fixed, swapped);
+    const double change = (swapped.world - measured.world).norm() / measured.world.norm();
+    EXPECT_LT(swapped_balance, 1e-12);
+    EXPECT_LT(change, 1e-12);
+    std::printf("left pair's geoms swapped: Newton-Euler residual %.2g, wrenches changed by %.2g (relative)\n",
+                swapped_balance, change);
+
+    // A body no hand touches: zero.
+    coopdyn::MujocoContactWrenches<2> none;
+    fixed.read_contact_wrenches(box.model.get(), box.data.get(), mj_name2id(box.model.get(), mjOBJ_BODY, "left_link3"), none);
+    EXPECT_EQ(none.world.norm(), 0.0);
+    EXPECT_EQ(none.points.sum(), 0);
+}
+
+TEST(MujocoArmsInverseKinematics, RefusesNonFiniteTargetsAndBadOptionsNamingThem)
+{
+    BoxAtHold box;
+    const coopdyn::MujocoArms<2, 14> arms(box.model.get(), box_joints(), palms);
+    std::vector<coopdyn::Pose<double>> targets{arms.contact_pose(box.data.get(), 0), arms.contact_pose(box.data.get(), 1)};
+    const auto refused = [&](const std::vector<coopdyn::Pose<double>>& poses, const coopdyn::InverseKinematicsOptions& options) {
+        try {
+            arms.place_hands(box.model.get(), box.data.get(), poses, options);
+        } catch (const coopdyn::InvalidArgument& error) {
+            return error.parameter();
+        }
+        return std::string("not refused");
+    };
+    targets[1].position.y() = std::nan("");
+    EXPECT_EQ(refused(targets, {}), "targets[1]");
+    targets[1] = arms.contact_pose(box.data.get(), 1);
+    targets[0].orientation.coeffs().setZero();
+    EXPECT_EQ(refused(targets, {}), "targets[0]");
+    targets[0] = arms.contact_pose(box.data.get(), 0);
+    coopdyn::InverseKinematicsOptions options;
+    options.max_step = 0.0;
+    EXPECT_EQ(refused(targets, options), "options.max_step");
+    options = {};
+    options.damping = -1.0;
+    EXPECT_EQ(refused(targets, options), "options.damping");
+    options = {};
+    options.iteration_limit = -1;
+    EXPECT_EQ(refused(targets, options), "options.iteration_limit");
 }
 
 }  // namespace

@@ -2,8 +2,9 @@
 /// \brief The MuJoCo adapter: what the controller needs of the arms each tick (ControllerInput's
 /// M, h, J, Jdot qdot, q, qdot), read from a MuJoCo model's state for Q chosen joints and K contact
 /// points; and the helpers every user otherwise writes: the contact frames in the object
-/// (ControllerParameters::contacts) and an inverse kinematics for start postures.
-/// docs/adapters.md ("Conventions", "MuJoCo").
+/// (ControllerParameters::contacts), an inverse kinematics for start postures and each hand's
+/// contact wrench on the object (read_contact_wrenches; a wrench applied to a body is in
+/// mujoco_forces.hpp). docs/adapters.md ("Conventions", "MuJoCo").
 ///
 ///     coopdyn::MujocoArms<2, 14> arms(model, joint_names, {"left_palm", "right_palm"});
 ///     mj_step1(model, data);              // or mj_forward: positions and velocities current
@@ -13,6 +14,7 @@
 /// Needs MuJoCo (written and tested against 2.2.2; CMake target coopdyn::mujoco).
 #pragma once
 
+#include "coopdyn/adapters/mujoco_forces.hpp"
 #include "coopdyn/adapters/mujoco_model.hpp"
 #include "coopdyn/config.hpp"
 #include "coopdyn/control/controller_model.hpp"
@@ -27,6 +29,7 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -167,6 +170,49 @@ public:
         return {contact_position(data, i), Eigen::Quaterniond(contact_rotation(data, i)).normalized()};
     }
 
+    /// \brief Each hand's wrench on `object_body` from MuJoCo's contacts (docs/adapters.md,
+    /// "Applied wrenches and contact forces"): hand i is contact i's body with the bodies welded to
+    /// it (no joint between them: the arm's last link and its palm), the object `object_body` with
+    /// the bodies welded to it; every contact between a geom of the one and a geom of the other
+    /// counts, in either order, with its force from mj_contactForce (mujoco_contact_wrench), the
+    /// moments taken about contact point i. `data` must hold a constraint solve and the contacts it
+    /// solved for: after mj_step2 (the forces of that step; the positions are still the step's
+    /// start) or mj_forward, not after mj_step1 alone (its new contacts would be read with the last
+    /// step's forces). Allocation-free; `out` has K columns.
+    void read_contact_wrenches(const mjModel* model, const mjData* data, int object_body,
+                               MujocoContactWrenches<Arms>& out) const noexcept
+    {
+        COOPDYN_ASSERT(out.arms() == arms(), "MujocoArms: the contact wrenches have the wrong size");
+        out.set_zero();
+        const int object = model->body_weldid[object_body];
+        for (int c = 0; c < data->ncon; ++c) {
+            const mjContact& found = data->contact[c];
+            const int first = model->body_weldid[model->geom_bodyid[found.geom1]];
+            const int second = model->body_weldid[model->geom_bodyid[found.geom2]];
+            for (Index i = 0; i < arms(); ++i) {
+                const int hand = model->body_weldid[contact(i).body];
+                if (!((first == hand && second == object) || (second == hand && first == object))) {
+                    continue;
+                }
+                mjtNum local[6];
+                mj_contactForce(model, data, c, local);  // geom1's force on geom2
+                const double sign = first == hand ? 1.0 : -1.0;
+                const Vector6<double> wrench = sign * mujoco_contact_wrench(found, local);
+                const Eigen::Vector3d force = wrench.template head<3>();
+                const Eigen::Vector3d arm = Eigen::Map<const Eigen::Vector3d>(found.pos) - contact_position(data, i);
+                out.world.template block<3, 1>(0, i) += force;
+                out.world.template block<3, 1>(3, i) += arm.cross(force) + wrench.template tail<3>();
+                out.normal_forces(i) += local[0];
+                ++out.points(i);
+            }
+        }
+        for (Index i = 0; i < arms(); ++i) {
+            const Eigen::Matrix3d rotation = contact_rotation(data, i);
+            out.contact_frame.template block<3, 1>(0, i) = rotation.transpose() * out.world.template block<3, 1>(0, i);
+            out.contact_frame.template block<3, 1>(3, i) = rotation.transpose() * out.world.template block<3, 1>(3, i);
+        }
+    }
+
     /// \brief ControllerParameters::contacts from the current state: each contact frame relative to
     /// the object (mujoco_object_pose: its centre of mass, its body's axes), with `friction`.
     /// Allocates (construction time). \throws InvalidArgument when the model has no such body.
@@ -187,14 +233,12 @@ public:
     /// least squares from data's current qpos, clamping to the joints' ranges where the model
     /// limits them. Other joints (the object, other robots) stay. On return data's kinematics match
     /// its qpos (mj_kinematics); run mj_forward before simulating. Allocates: not for the tick.
-    /// \throws InvalidArgument when `targets` does not hold K poses.
+    /// \throws InvalidArgument when `targets` does not hold K poses, a target is not finite or its
+    /// quaternion is zero ("targets[i]"), or an option is out of range ("options.damping", ...).
     InverseKinematicsResult place_hands(const mjModel* model, mjData* data, const std::vector<Pose<double>>& targets,
                                         const InverseKinematicsOptions& options = {}) const
     {
-        if (targets.size() != static_cast<std::size_t>(arms())) {
-            throw InvalidArgument("MuJoCo arms", "targets", no_arm,
-                                  "has " + std::to_string(targets.size()) + " poses for " + std::to_string(arms()) + " contacts");
-        }
+        check_targets(targets, options);
         Eigen::VectorXd q(joints());
         read_positions(data, q);
         const auto evaluate = [&](const Eigen::VectorXd& x, Eigen::VectorXd& error, Eigen::MatrixXd& jacobian) {
@@ -235,6 +279,38 @@ private:
         }
         mj_kinematics(model, data);
         mj_comPos(model, data);
+    }
+
+    /// place_hands' inputs: K finite targets with nonzero quaternions, options in range.
+    void check_targets(const std::vector<Pose<double>>& targets, const InverseKinematicsOptions& options) const
+    {
+        if (targets.size() != static_cast<std::size_t>(arms())) {
+            throw InvalidArgument("MuJoCo arms", "targets", no_arm,
+                                  "has " + std::to_string(targets.size()) + " poses for " + std::to_string(arms()) + " contacts");
+        }
+        for (std::size_t i = 0; i < targets.size(); ++i) {
+            const Pose<double>& target = targets[i];
+            if (!target.position.allFinite() || !target.orientation.coeffs().allFinite() ||
+                !(target.orientation.coeffs().norm() > 0.0)) {
+                throw InvalidArgument("MuJoCo arms", "targets[" + std::to_string(i) + "]", static_cast<Index>(i),
+                                      "must have a finite position and a finite, nonzero quaternion");
+            }
+        }
+        const auto require = [](bool ok, const char* parameter, const std::string& what) {
+            if (!ok) {
+                throw InvalidArgument("MuJoCo arms", parameter, no_arm, what);
+            }
+        };
+        require(std::isfinite(options.damping) && options.damping >= 0.0, "options.damping",
+                "must be finite and >= 0, got " + std::to_string(options.damping));
+        require(std::isfinite(options.tolerance) && options.tolerance >= 0.0, "options.tolerance",
+                "must be finite and >= 0, got " + std::to_string(options.tolerance));
+        require(options.iteration_limit >= 0, "options.iteration_limit",
+                "must be >= 0, got " + std::to_string(options.iteration_limit));
+        require(std::isfinite(options.max_step) && options.max_step > 0.0, "options.max_step",
+                "must be finite and positive, got " + std::to_string(options.max_step));
+        require(std::isfinite(options.stall_step) && options.stall_step >= 0.0, "options.stall_step",
+                "must be finite and >= 0, got " + std::to_string(options.stall_step));
     }
 
     /// `model`, once the counts match a fixed K and Q (checked before any name is looked up).
