@@ -142,7 +142,7 @@ inline void apply_cell(const Cell& cell, double duration, std::size_t palms, box
 
 /// What the controller reported in a run, counted over the logged ticks (t >= 0).
 struct CellStats {
-    std::array<long, 7> statuses{};  ///< ticks per ControlStatus (its enumerators' order)
+    std::array<long, 9> statuses{};  ///< ticks per ControlStatus (its enumerators' order)
     long saturated_ticks = 0;        ///< ticks the library's torque limits clamped a joint
     long slipping_ticks = 0;         ///< ticks with a contact marked slipping
     double controller_slip = 0.0;    ///< largest contact slip the controller measured (m)
@@ -151,10 +151,10 @@ struct CellStats {
     Eigen::VectorXd peak_torque;     ///< largest |tau_j| sent
 };
 
-inline constexpr std::array<coopdyn::ControlStatus, 7> all_statuses{
+inline constexpr std::array<coopdyn::ControlStatus, 9> all_statuses{
     coopdyn::ControlStatus::ok,          coopdyn::ControlStatus::friction_infeasible, coopdyn::ControlStatus::qp_failed,
     coopdyn::ControlStatus::singular,    coopdyn::ControlStatus::invalid_input,      coopdyn::ControlStatus::degraded,
-    coopdyn::ControlStatus::safe_hold};
+    coopdyn::ControlStatus::safe_hold,   coopdyn::ControlStatus::torque_saturated,   coopdyn::ControlStatus::slipping};
 
 /// The experiment loop's fault hook (box_experiment.hpp's NoFaults interface) for one cell:
 /// corrupts the controller's input or the torque sent, and keeps CellStats. Allocates nothing

@@ -297,6 +297,7 @@ TEST(Slip, AContactMovedOrTurnedByHandReportsThatAmount)
     EXPECT_LT(data.slip_distance.maxCoeff(), 1e-15);
     EXPECT_LT(data.slip_angle.maxCoeff(), 1e-7);  // acos-free: log of a quaternion within rounding of 1
     EXPECT_EQ(data.slipping_contacts, 0);
+    EXPECT_EQ(data.status, ControlStatus::ok);
     EXPECT_LT(data.contact_frame_wrenches(2, 1), normal_before * (1 + 1e-12));  // no slip: not raised
 
     const Vector3d moved(0.003, -0.004, 0.012);  // 13 mm
@@ -313,6 +314,8 @@ TEST(Slip, AContactMovedOrTurnedByHandReportsThatAmount)
     EXPECT_LT(data.slip_angle(1), 1e-7);
     EXPECT_TRUE(data.slipping(0) && data.slipping(1));  // 13 mm > 5 mm, 0.1 rad > 0.05 rad
     EXPECT_EQ(data.slipping_contacts, 2);
+    EXPECT_EQ(data.status, ControlStatus::slipping);  // what users check says it, on this tick
+    EXPECT_TRUE(coopdyn::control_computed(data.status));
     // f_min times the factor on both: each presses at least twice the former normal force now.
     EXPECT_GE(data.contact_frame_wrenches(2, 1), factor * f_min * (1 - 1e-12));
     EXPECT_GE(data.contact_frame_wrenches(2, 0), factor * f_min * (1 - 1e-12));
@@ -335,8 +338,11 @@ TEST(TorqueLimits, SaturationIsReportedAndTheTorquesClamped)
     const Model model(c.parameters);
     Data data(model);
     const VectorXd tau = coopdyn::controller_tick(model, data, c.input);
+    EXPECT_EQ(unlimited.status, ControlStatus::ok);
     EXPECT_EQ(data.requested_torque, wanted);
     EXPECT_EQ(data.saturated_count, 7);
+    EXPECT_EQ(data.status, ControlStatus::torque_saturated);  // on the tick it clips
+    EXPECT_TRUE(coopdyn::control_computed(data.status));
     for (Index j = 0; j < 14; ++j) {
         EXPECT_EQ(data.saturated_joints(j), j % 2 == 0) << j;
         EXPECT_EQ(tau(j), j % 2 == 0 ? std::copysign(limits(j), wanted(j)) : wanted(j)) << j;
@@ -348,11 +354,13 @@ TEST(TorqueLimits, SaturationIsReportedAndTheTorquesClamped)
     Data rate(rate_model);
     const VectorXd first = coopdyn::controller_tick(rate_model, rate, c.input);
     EXPECT_EQ(first, wanted);  // nothing sent before: no limit
+    EXPECT_EQ(rate.status, ControlStatus::ok);
     Input moved = c.input;
     moved.desired_pose.position += Vector3d(0.05, 0.0, -0.03);
     const VectorXd second = coopdyn::controller_tick(rate_model, rate, moved);
     EXPECT_LE((second - first).cwiseAbs().maxCoeff(), 0.05 + 1e-12 * first.cwiseAbs().maxCoeff());  // rounding of first + 0.05
     EXPECT_GT(rate.saturated_count, 0);
+    EXPECT_EQ(rate.status, ControlStatus::torque_saturated);
     for (Index j = 0; j < 14; ++j) {
         const double change = rate.requested_torque(j) - first(j);
         EXPECT_EQ(second(j), std::abs(change) > 0.05 ? first(j) + std::copysign(0.05, change) : rate.requested_torque(j));
@@ -453,8 +461,14 @@ TEST(FaultNames, EveryNewEnumeratorHasItsName)
     EXPECT_STREQ(coopdyn::to_string(ReplacedInput::object_state_from_contacts), "object_state_from_contacts");
     EXPECT_STREQ(coopdyn::to_string(ReplacedInput::object_state_from_twist), "object_state_from_twist");
     EXPECT_STREQ(coopdyn::to_string(coopdyn::ControllerInputProblem::object_stale), "object (flagged stale)");
+    EXPECT_STREQ(coopdyn::to_string(ControlStatus::torque_saturated), "torque_saturated");
+    EXPECT_STREQ(coopdyn::to_string(ControlStatus::slipping), "slipping");
     EXPECT_TRUE(coopdyn::control_computed(ControlStatus::degraded));
+    EXPECT_TRUE(coopdyn::control_computed(ControlStatus::torque_saturated));
+    EXPECT_TRUE(coopdyn::control_computed(ControlStatus::slipping));
     EXPECT_FALSE(coopdyn::control_computed(ControlStatus::safe_hold));
+    EXPECT_FALSE(coopdyn::control_computed(ControlStatus::invalid_input));
+    EXPECT_FALSE(coopdyn::control_computed(ControlStatus::singular));
 }
 
 }  // namespace

@@ -293,6 +293,18 @@ const typename Data::JointVector& controller_singular(const Model& model, Data& 
     return controller_limit_torque(model, data);
 }
 
+/// A tick that computed the control, once its torque is limited: a slipping contact, then a
+/// clipped torque, take precedence over the solver's statuses and degraded (ControlStatus), for
+/// they say the contact wrenches are not the ones computed.
+template <typename Data> void controller_grasp_status(Data& data) noexcept
+{
+    if (data.slipping_contacts > 0) {
+        data.status = ControlStatus::slipping;
+    } else if (data.saturated_count > 0) {
+        data.status = ControlStatus::torque_saturated;
+    }
+}
+
 }  // namespace detail
 
 /// \brief One controller tick: fills `data` from `input` and returns the joint torques
@@ -356,7 +368,9 @@ controller_tick(const ControllerModel<Scalar, Arms, Joints, Edges>& model, Contr
         data.status = ControlStatus::degraded;
     }
     detail::controller_record_hold(data, input);
-    return detail::controller_limit_torque(model, data);
+    const auto& torque = detail::controller_limit_torque(model, data);
+    detail::controller_grasp_status(data);
+    return torque;
 }
 
 }  // namespace coopdyn

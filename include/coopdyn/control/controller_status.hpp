@@ -12,9 +12,15 @@
 namespace coopdyn {
 
 /// \brief Outcome of a controller tick (ControllerData::status). Whatever the status, the torques
-/// are finite; which torque each status sends: docs/control.md, "Every status's torque".
+/// are finite; which torque each status sends: docs/control.md, "Every status's torque". ok means
+/// nothing went wrong: the measurement was used as given, the torque sent is the one computed, the
+/// predicted contact wrenches satisfy every friction row and no contact was seen to slip. When
+/// several conditions hold, the status is the first of: invalid_input, safe_hold, singular (these
+/// compute no control), then slipping, torque_saturated, qp_failed, friction_infeasible,
+/// degraded; each condition also has its own field (slipping_contacts, saturated_count,
+/// qp_status, fallback_used, replaced_input), set whatever the status.
 enum class ControlStatus {
-    /// Every step succeeded; the predicted contact wrenches satisfy every friction row.
+    /// Every step succeeded, nothing was clipped, replaced or seen to slip.
     ok,
     /// No squeeze satisfies every friction row (the load cannot be held by friction as modelled):
     /// the fallback's least-violating squeeze is applied and ControllerData::fallback_violation
@@ -44,6 +50,17 @@ enum class ControlStatus {
     /// tick that computed the control (its arms' bias and its predicted contact wrenches: the same
     /// squeeze, the object's last estimated load balanced, no motion). Never zero while held.
     safe_hold,
+    /// The torque limits (ControllerParameters::torque_limits, torque_rate_limits) clipped the
+    /// torque (ControllerData::saturated_joints, requested_torque): the arms do not apply the
+    /// contact wrenches the tick computed, and the object may sag, slip or fall. The control was
+    /// computed; the clipped torque is sent.
+    torque_saturated,
+    /// A contact slips (ControllerData::slipping): its measured frame is farther from where the
+    /// measured object pose puts it than FaultOptions::slip_distance_threshold or
+    /// slip_angle_threshold. Needs the contacts' poses in the input (ControllerInput::
+    /// contact_poses_filled; the MuJoCo adapter fills them) and a measured object pose. The control
+    /// was computed (with the squeeze raised when FaultOptions::slip_squeeze_factor > 1).
+    slipping,
 };
 
 /// The enumerator's name.
@@ -57,18 +74,20 @@ inline const char* to_string(ControlStatus status) noexcept
     case ControlStatus::invalid_input: return "invalid_input";
     case ControlStatus::degraded: return "degraded";
     case ControlStatus::safe_hold: return "safe_hold";
+    case ControlStatus::torque_saturated: return "torque_saturated";
+    case ControlStatus::slipping: return "slipping";
     }
     return "unknown";
 }
 
 /// Whether a tick with this status computed the control: every output of ControllerData is this
-/// tick's (ok, degraded, friction_infeasible, qp_failed). For invalid_input, singular and
-/// safe_hold the tick computed only `torque`; every other output is reset (docs/control.md,
-/// "After a failed tick").
+/// tick's (ok, degraded, friction_infeasible, qp_failed, torque_saturated, slipping). For
+/// invalid_input, singular and safe_hold the tick computed only `torque`; every other output is
+/// reset (docs/control.md, "After a failed tick").
 inline bool control_computed(ControlStatus status) noexcept
 {
-    return status == ControlStatus::ok || status == ControlStatus::degraded ||
-           status == ControlStatus::friction_infeasible || status == ControlStatus::qp_failed;
+    return status != ControlStatus::invalid_input && status != ControlStatus::singular &&
+           status != ControlStatus::safe_hold;
 }
 
 /// \brief What replaced the object's measurement in a tick (ControllerData::replaced_input);
