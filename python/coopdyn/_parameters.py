@@ -26,7 +26,8 @@ FIELDS = {
     _c.ResolvedAccelerationEndEffector: ("apparent_inertia", "derivative_gain", "proportional_gain"),
     _c.ResolvedAccelerationArm: ("end_effector", "grasp_body"),
     _c.ControllerParameters: ("joints", "contacts", "stiffness", "damping", "posture_stiffness",
-                              "posture_damping", "objective", "qp", "torque_limits", "torque_rate_limits", "faults"),
+                              "posture_damping", "objective", "qp", "torque_limits", "torque_rate_limits", "faults",
+                              "check_contact_normals", "joint_names"),
 }
 
 

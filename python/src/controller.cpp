@@ -8,6 +8,7 @@
 
 #include <coopdyn/control.hpp>
 
+#include <string>
 #include <vector>
 
 namespace coopdyn::python {
@@ -139,7 +140,26 @@ void bind_parameters(py::module_& module)
             "list of ContactPoint, K >= 2, in the order of J's row blocks (a copy: assign the whole list)")
         .def_readwrite("objective", &Parameters::objective, "SqueezeObjective")
         .def_readwrite("qp", &Parameters::qp, "ContactQpOptions")
-        .def_readwrite("faults", &Parameters::faults, "FaultOptions");
+        .def_readwrite("faults", &Parameters::faults, "FaultOptions")
+        .def_readwrite("check_contact_normals", &Parameters::check_contact_normals,
+                       "refuse a contact frame whose z does not face into the object, z . r >= 0 (default True)")
+        .def_property(
+            "joint_names",
+            [](const Parameters& self) {
+                py::list names;
+                for (const std::string& name : self.joint_names) {
+                    names.append(name);
+                }
+                return names;
+            },
+            [](Parameters& self, const py::sequence& names) {
+                std::vector<std::string> values;
+                for (const py::handle name : names) {
+                    values.push_back(name.cast<std::string>());
+                }
+                self.joint_names = values;
+            },
+            "optional list of the Q joints' names, used only to name a joint in errors (a copy: assign the whole list)");
     def_array(parameters, "ControllerParameters", "stiffness", &Parameters::stiffness, "(6, 6)",
               "K_d (6, 6), symmetric >= 0 [N/m, N m/rad], L(16)");
     def_array(parameters, "ControllerParameters", "damping", &Parameters::damping, "(6, 6)",
@@ -192,7 +212,10 @@ void bind_controller_types(py::module_& module)
         .value("singular", ControlStatus::singular)
         .value("invalid_input", ControlStatus::invalid_input)
         .value("degraded", ControlStatus::degraded, "the object's measurement was replaced by a prediction")
-        .value("safe_hold", ControlStatus::safe_hold, "h + J^T w of the last computed tick (docs/control.md)");
+        .value("safe_hold", ControlStatus::safe_hold, "h + J^T w of the last computed tick (docs/control.md)")
+        .value("torque_saturated", ControlStatus::torque_saturated,
+               "the torque limits clipped the torque: the contact wrenches are not the ones computed")
+        .value("slipping", ControlStatus::slipping, "a contact slips (data.slipping)");
     py::enum_<ReplacedInput>(module, "ReplacedInput", "What replaced the object's measurement (ControllerData.replaced_input).")
         .value("none", ReplacedInput::none)
         .value("object_acceleration", ReplacedInput::object_acceleration)

@@ -224,6 +224,60 @@ def test_invalid_parameters_and_inputs():
     assert error.value.parameter == "input"
 
 
+def test_a_contact_facing_the_wrong_way_is_refused_by_name():
+    """A palm's z flipped outward, or turned tangential, is refused naming the contact (z . r >= 0,
+    docs/control.md, "Contact frames"); check_contact_normals = False accepts it."""
+    flip = np.diag([1.0, -1.0, -1.0])  # pi about the frame's x: z -> -z
+    tangential = np.array([[1.0, 0, 0], [0, 0, -1.0], [0, 1.0, 0]])  # pi/2 about x: z -> -y
+    for turn, words in ((flip, "points out of the object"), (tangential, "lies along the object's surface")):
+        parameters = two_palms()
+        contacts = parameters.contacts
+        right_frame = np.array([[0, 0, -1], [0, 1, 0], [1, 0, 0]], dtype=float)
+        contacts[1].frame = coopdyn.Pose([0.15, 0, 0], quaternion_of(right_frame @ turn))
+        parameters.contacts = contacts
+        with pytest.raises(coopdyn.InvalidModel, match=words) as error:
+            coopdyn.ControllerModel(parameters)
+        assert (error.value.component, error.value.arm, error.value.parameter) == ("contact", 1, "frame.orientation")
+        parameters.check_contact_normals = False
+        assert coopdyn.ControllerModel(parameters).arms == 2
+
+
+def test_joints_and_joint_names_in_errors():
+    parameters = two_palms()
+    parameters.posture_stiffness = parameters.posture_damping = np.zeros(13)  # a 13-joint cell, joints = 12
+    with pytest.raises(coopdyn.InvalidModel, match="set joints to the arms' joint count") as error:
+        coopdyn.ControllerModel(parameters)
+    assert error.value.parameter == "joints"
+    parameters = two_palms()
+    parameters.joint_names = [f"arm_joint{j + 1}" for j in range(12)]
+    limits = np.full(12, 10.0)
+    limits[3] = -1.0
+    parameters.torque_limits = limits
+    with pytest.raises(coopdyn.InvalidModel, match=r"joint 3 \(arm_joint4\)") as error:
+        coopdyn.ControllerModel(parameters)
+    assert error.value.parameter == "torque_limits"
+    parameters.joint_names = ["a", "b"]
+    parameters.torque_limits = np.zeros(0)
+    with pytest.raises(coopdyn.InvalidModel) as error:
+        coopdyn.ControllerModel(parameters)
+    assert error.value.parameter == "joint_names"
+
+
+def test_a_clipped_torque_is_the_status():
+    """The README's palms holding 2 kg, their torques limited below what the hold needs: the tick
+    that clips says torque_saturated (it was ok until this release)."""
+    parameters = two_palms()
+    free = coopdyn.ControllerModel(parameters)
+    wanted = coopdyn.controller_tick(free, coopdyn.ControllerData(free), box_input(free))
+    parameters.torque_limits = np.maximum(0.5 * np.abs(wanted), 1e-3)
+    model = coopdyn.ControllerModel(parameters)
+    data = coopdyn.ControllerData(model)
+    tau = coopdyn.controller_tick(model, data, box_input(model))
+    assert data.saturated_count > 0
+    assert data.status == coopdyn.ControlStatus.torque_saturated
+    assert np.all(np.abs(tau) <= parameters.torque_limits)
+
+
 def test_parameters_print_compare_and_pickle():
     parameters = two_palms()
     copy = pickle.loads(pickle.dumps(parameters))

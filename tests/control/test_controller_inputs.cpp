@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -174,6 +175,103 @@ TEST(ControllerModel, RefusesEachBadParameterByName)
         Parameters p = valid_parameters();
         p.qp.iteration_limit = -3;
         expect_refused(p, "qp.iteration_limit");
+    }
+}
+
+/// A frame at `point` on the face of outward normal `face_normal`, z the inward normal, x turned
+/// by `angle` about it.
+coopdyn::Pose<double> frame_on_face(const Vector3d& point, const Vector3d& face_normal, double angle)
+{
+    const Vector3d z = -face_normal;
+    const Vector3d seed = std::abs(z.x()) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY();
+    const Vector3d x0 = (seed - seed.dot(z) * z).normalized();
+    const Vector3d x = Eigen::AngleAxisd(angle, z) * x0;
+    Eigen::Matrix3d rotation;
+    rotation << x, z.cross(x), z;
+    return {point, Quaterniond(rotation)};
+}
+
+TEST(ControllerModel, RefusesAContactFacingOutOfTheObjectOrAlongIt)
+{
+    // Seeded points on the faces of asymmetric boxes, anywhere on a face (near its corners too):
+    // the inward normal is accepted, the same frame flipped (pi about x) is refused naming the
+    // contact; at the face's centre, a z laid along the face (pi/2 about x) is refused too;
+    // check_contact_normals = false accepts both.
+    std::mt19937 rng(3301);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const Quaterniond flip(Eigen::AngleAxisd(3.14159265358979323846, Vector3d::UnitX()));
+    const Quaterniond lay(Eigen::AngleAxisd(0.5 * 3.14159265358979323846, Vector3d::UnitX()));
+    for (int trial = 0; trial < 40; ++trial) {
+        const Vector3d half(0.05 + 0.2 * std::abs(unit(rng)), 0.05 + 0.2 * std::abs(unit(rng)), 0.01 + 0.1 * std::abs(unit(rng)));
+        const int axis = trial % 3;
+        const Index contact = trial % 2;
+        const auto slot = static_cast<std::size_t>(contact);
+        const double side = contact == 0 ? -1.0 : 1.0;
+        const Vector3d normal = side * Vector3d::Unit(axis);
+        Vector3d point(unit(rng) * half.x(), unit(rng) * half.y(), unit(rng) * half.z());
+        point(axis) = side * half(axis);
+        const Vector3d centre = side * half(axis) * Vector3d::Unit(axis);
+        for (const bool at_centre : {false, true}) {
+            Parameters p = valid_parameters();
+            p.contacts[slot].frame = frame_on_face(at_centre ? centre : point, normal, 3.0 * unit(rng));
+            p.contacts[1 - slot].frame = frame_on_face(-point, -normal, 0.0);
+            EXPECT_NO_THROW(Model{p}) << trial;
+            p.contacts[slot].frame.orientation = p.contacts[slot].frame.orientation * (at_centre ? lay : flip);
+            expect_refused(p, "frame.orientation", contact);
+            p.check_contact_normals = false;
+            EXPECT_NO_THROW(Model{p}) << trial;
+        }
+    }
+    // A plate held from below near its rim: z . r is small and negative, and accepted.
+    Parameters plate = valid_parameters();
+    plate.contacts[0].frame = frame_on_face(Vector3d(-0.4, 0, -0.005), -Vector3d::UnitZ(), 0.0);
+    plate.contacts[1].frame = frame_on_face(Vector3d(0.4, 0, -0.005), -Vector3d::UnitZ(), 0.0);
+    EXPECT_NO_THROW(Model{plate});
+    // The message says which way the normal points and how to fix it.
+    Parameters flipped = valid_parameters();
+    flipped.contacts[1].frame.orientation = flipped.contacts[1].frame.orientation * Quaterniond(0, 1, 0, 0);
+    try {
+        const Model model(flipped);
+        ADD_FAILURE() << "accepted an outward normal";
+    } catch (const coopdyn::InvalidModel& error) {
+        EXPECT_NE(std::string(error.what()).find("points out of the object"), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("check_contact_normals"), std::string::npos) << error.what();
+    }
+}
+
+TEST(ControllerModel, NamesJointsWhenEveryPerJointVectorDisagreesWithIt)
+{
+    Parameters p = valid_parameters();
+    p.posture_stiffness = p.posture_damping = VectorXd::Ones(13);  // a 13-joint cell, joints = 12
+    expect_refused(p, "joints");
+    p.torque_limits = VectorXd::Ones(13);
+    expect_refused(p, "joints");
+    p.torque_limits = VectorXd::Ones(12);  // the vectors disagree among themselves: the first is named
+    expect_refused(p, "posture_stiffness");
+    p = valid_parameters();
+    p.joint_names = {"a", "b"};
+    expect_refused(p, "joint_names");
+    p.joint_names.clear();
+    for (int j = 0; j < 12; ++j) {
+        p.joint_names.push_back("xarm_joint" + std::to_string(j + 1));
+    }
+    p.torque_limits = VectorXd::Constant(12, 30.0);
+    p.torque_limits(3) = 0.0;
+    try {
+        const Model model(p);
+        ADD_FAILURE() << "accepted a zero torque limit";
+    } catch (const coopdyn::InvalidModel& error) {
+        EXPECT_EQ(error.parameter(), "torque_limits");
+        EXPECT_NE(std::string(error.what()).find("joint 3 (xarm_joint4)"), std::string::npos) << error.what();
+    }
+    p.torque_limits.resize(0);
+    p.posture_damping(5) = -1.0;
+    try {
+        const Model model(p);
+        ADD_FAILURE() << "accepted a negative posture gain";
+    } catch (const coopdyn::InvalidModel& error) {
+        EXPECT_EQ(error.parameter(), "posture_damping");
+        EXPECT_NE(std::string(error.what()).find("joint 5 (xarm_joint6)"), std::string::npos) << error.what();
     }
 }
 
@@ -376,7 +474,9 @@ TEST(ControllerTickDeathTest, DataOrInputOfAnotherSizeStopsWithAMessage)
     Parameters three = valid_parameters();
     three.joints = 18;
     three.contacts.push_back(three.contacts[0]);
-    three.contacts[2].frame.position = Vector3d(0, 0.15, 0);
+    Eigen::Matrix3d facing_minus_y;  // columns x, y, z: z = -y, the inward normal at y = +0.15
+    facing_minus_y << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+    three.contacts[2].frame = {Vector3d(0, 0.15, 0), Quaterniond(facing_minus_y)};
     three.posture_stiffness = three.posture_damping = VectorXd::Ones(18);
     const Model other(three);
     Data other_data(other);

@@ -24,6 +24,7 @@
 #include "coopdyn/control/projected_dynamics.hpp"
 #include "coopdyn/detail/validation.hpp"
 #include "coopdyn/errors.hpp"
+#include "coopdyn/model/contact_frames.hpp"
 #include "coopdyn/spatial/pose.hpp"
 #include "coopdyn/spatial/spatial_vector.hpp"
 
@@ -149,6 +150,13 @@ template <typename ScalarType> struct ControllerParameters {
     /// Q entries, each > 0); empty: no limit.
     DynamicVector torque_rate_limits;
     FaultOptions<Scalar> faults{};
+    /// Refuse a contact whose frame does not face into the object (contact_normal_cosine:
+    /// z_i . r_i >= 0, model/contact_frames.hpp). Turn off only for a grasp where the inward normal
+    /// need not face the object's centre (a non-convex object held inside a hollow or by a handle).
+    bool check_contact_normals = true;
+    /// Optional: the Q joints' names in q's order (MujocoArms::joint_names, a URDF's), used only to
+    /// name a joint in the errors; empty: joints are named by index.
+    std::vector<std::string> joint_names;
 };
 
 /// Rows of the contact QP for K contacts of n-edge pyramids: K (n + 7) (Dynamic passes through).
@@ -247,7 +255,17 @@ public:
 
 private:
     void validate(const ControllerParameters<Scalar>& parameters) const;
+    void validate_joint_count(const ControllerParameters<Scalar>& parameters) const;
     void validate_faults(const ControllerParameters<Scalar>& parameters) const;
+    /// "joint j (name)" with ControllerParameters::joint_names, else "joint j".
+    static std::string joint_label(const ControllerParameters<Scalar>& parameters, Index j)
+    {
+        std::string label = "joint " + std::to_string(j);
+        if (static_cast<std::size_t>(j) < parameters.joint_names.size()) {
+            label += " (" + parameters.joint_names[static_cast<std::size_t>(j)] + ")";
+        }
+        return label;
+    }
     void build_rows();
 
     Index joints_;
@@ -294,6 +312,12 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::validate(const ControllerPara
         const detail::ErrorContext context{detail::ErrorKind::model, "contact", i};
         detail::require_finite(point.frame.position, context, "frame.position");
         detail::require_unit_quaternion(point.frame.orientation, context, "frame.orientation");
+        if (parameters.check_contact_normals) {
+            const std::string problem = contact_normal_problem(point.frame);
+            if (!problem.empty()) {
+                detail::fail(context, "frame.orientation", problem);
+            }
+        }
         point.friction.validate(i);
         if (Edges != Eigen::Dynamic && point.friction.pyramid_edges != Edges) {
             detail::fail(context, "friction.pyramid_edges",
@@ -303,14 +327,19 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::validate(const ControllerPara
     }
     detail::require_symmetric_positive(parameters.stiffness, model, "stiffness", /*allow_semidefinite=*/true);
     detail::require_symmetric_positive(parameters.damping, model, "damping", /*allow_semidefinite=*/true);
+    validate_joint_count(parameters);
     const auto require_joint_gains = [&](const auto& gains, const char* name) {
         if (gains.size() != joints_) {
             detail::fail(model, name,
-                         "must have one entry per joint (" + std::to_string(joints_) + "), got " +
+                         "must have one entry per joint (joints = " + std::to_string(joints_) + "), got " +
                              std::to_string(gains.size()));
         }
         for (Index j = 0; j < joints_; ++j) {
-            detail::require_non_negative(gains(j), model, name);
+            const double value = detail::value_of(gains(j));
+            if (!(value >= 0.0) || !std::isfinite(value)) {
+                detail::fail(model, name,
+                             joint_label(parameters, j) + ": must be non-negative and finite, got " + std::to_string(value));
+            }
         }
     };
     require_joint_gains(parameters.posture_stiffness, "posture_stiffness");
@@ -333,6 +362,38 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::validate(const ControllerPara
     validate_faults(parameters);
 }
 
+/// `joints` against the per-joint inputs: when every per-joint vector given (the posture gains,
+/// joint_names, the torque limits) has the same size and it is not `joints`, `joints` is what is
+/// wrong (a 13-joint cell with joints = 12 names `joints`, not posture_stiffness); joint_names
+/// must be empty or have `joints` entries.
+template <typename Scalar, int Arms, int Joints, int Edges>
+void ControllerModel<Scalar, Arms, Joints, Edges>::validate_joint_count(const ControllerParameters<Scalar>& parameters) const
+{
+    const detail::ErrorContext model{detail::ErrorKind::model, "controller"};
+    const Index gains = parameters.posture_stiffness.size();
+    bool all_agree = gains != joints_ && parameters.posture_damping.size() == gains;
+    std::string given = "posture_stiffness, posture_damping";
+    const auto also = [&](Index size, const char* name) {
+        if (size > 0) {
+            all_agree = all_agree && size == gains;
+            given += std::string(", ") + name;
+        }
+    };
+    also(static_cast<Index>(parameters.joint_names.size()), "joint_names");
+    also(parameters.torque_limits.size(), "torque_limits");
+    also(parameters.torque_rate_limits.size(), "torque_rate_limits");
+    if (all_agree && gains > 0) {
+        detail::fail(model, "joints",
+                     "is " + std::to_string(joints_) + ", but " + given + " all have " + std::to_string(gains) +
+                         " entries (one per joint): set joints to the arms' joint count");
+    }
+    if (!parameters.joint_names.empty() && static_cast<Index>(parameters.joint_names.size()) != joints_) {
+        detail::fail(model, "joint_names",
+                     "must be empty or have one name per joint (joints = " + std::to_string(joints_) + "), got " +
+                         std::to_string(parameters.joint_names.size()));
+    }
+}
+
 /// The torque limits (each entry > 0 and finite, Q entries, or none) and the fault options.
 template <typename Scalar, int Arms, int Joints, int Edges>
 void ControllerModel<Scalar, Arms, Joints, Edges>::validate_faults(const ControllerParameters<Scalar>& parameters) const
@@ -351,7 +412,7 @@ void ControllerModel<Scalar, Arms, Joints, Edges>::validate_faults(const Control
             const double value = detail::value_of(limits(j));
             if (!std::isfinite(value) || !(value > 0.0)) {
                 detail::fail(model, name,
-                             "joint " + std::to_string(j) + ": must be positive and finite, got " + std::to_string(value));
+                             joint_label(parameters, j) + ": must be positive and finite, got " + std::to_string(value));
             }
         }
     };
