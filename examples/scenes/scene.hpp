@@ -11,6 +11,8 @@
 //                                                   each contact frame in the object (IK targets)
 //     "posture": [Q numbers]                        optional: q_n, default the start posture
 //     "torque_limits": [Q numbers]                  optional: |tau_j| limits (N m), default none
+//     "check_contact_normals": false                optional: accept contact frames whose z does not
+//                                                   face into the object (default true; docs/control.md)
 //   }
 //
 // Errors are example_common::ScenarioError naming the file and the field's JSON path
@@ -19,6 +21,7 @@
 
 #include "../common/json_reader.hpp"
 
+#include <coopdyn/model/contact_frames.hpp>
 #include <coopdyn/spatial/pose.hpp>
 
 #include <Eigen/Core>
@@ -52,6 +55,9 @@ struct Scene {
     /// controller's torques to them. The MJCFs generated from URDF carry no actuators, so the
     /// limits are the scene's; without them the torques are not clamped.
     std::optional<Eigen::VectorXd> torque_limits;
+    /// Refuse contact frames whose z does not face into the object (the start contacts here, the
+    /// measured grasp in the controller: ControllerParameters::check_contact_normals).
+    bool check_contact_normals = true;
 
     Eigen::Index joints() const noexcept { return static_cast<Eigen::Index>(joint_names.size()); }
     Eigen::Index arms() const noexcept { return static_cast<Eigen::Index>(contact_sites.size()); }
@@ -135,7 +141,8 @@ inline Scene parse_scene(const std::string& text, const std::string& source, con
     return example_common::read_document(text, source, [&](const detail::JsonReader& reader, const detail::json& document) {
         using detail::join_path;
         reader.only_keys(document, "",
-                         {"model", "joints", "contact_sites", "object", "start", "posture", "torque_limits"});
+                         {"model", "joints", "contact_sites", "object", "start", "posture", "torque_limits",
+                          "check_contact_normals"});
         Scene scene;
         scene.source = source;
         const std::string model = reader.string(reader.required(document, "", "model"), "model");
@@ -159,6 +166,22 @@ inline Scene parse_scene(const std::string& text, const std::string& source, con
         scene.object_pose = detail::pose(reader, reader.required(object, "object", "pose"), "object.pose");
         scene.start = detail::start(reader, reader.required(document, "", "start"), scene.joint_names.size(),
                                     scene.contact_sites.size());
+        if (const detail::json* check = reader.optional(document, "check_contact_normals")) {
+            if (!check->is_boolean()) {
+                reader.fail("check_contact_normals", "must be true or false");
+            }
+            scene.check_contact_normals = check->get<bool>();
+        }
+        if (scene.check_contact_normals) {
+            // The controller's rule, in its words (contact_normal_problem), before the IK would
+            // chase a palm turned inside out ("iteration_limit, residual 0.027").
+            for (std::size_t i = 0; i < scene.start.contacts.size(); ++i) {
+                const std::string problem = coopdyn::contact_normal_problem(scene.start.contacts[i]);
+                if (!problem.empty()) {
+                    reader.fail(detail::index_path("start.contacts", i) + ".orientation", problem);
+                }
+            }
+        }
         if (const detail::json* posture = reader.optional(document, "posture")) {
             scene.posture = detail::joint_vector(reader, *posture, "posture", scene.joint_names.size());
         }

@@ -117,7 +117,13 @@ public:
             if (scene_.start.seed) {
                 set_positions(*scene_.start.seed);
             }
-            for (const coopdyn::Pose<double>& contact : scene_.start.contacts) {
+            for (std::size_t i = 0; i < scene_.start.contacts.size(); ++i) {
+                const coopdyn::Pose<double>& contact = scene_.start.contacts[i];
+                const std::string problem =
+                    scene_.check_contact_normals ? coopdyn::contact_normal_problem(contact) : std::string();
+                if (!problem.empty()) {  // a Scene built in code, not read (the reader refuses it too)
+                    throw SceneError(scene_.source + ": start.contacts[" + std::to_string(i) + "].orientation: " + problem);
+                }
                 targets.push_back({object.position + orientation * contact.position,
                                    (orientation * contact.orientation.normalized()).normalized()});
             }
@@ -154,6 +160,8 @@ public:
         friction.minimum_normal_force = settings.minimum_normal_force;
         coopdyn::ControllerParameters<double> parameters;
         parameters.joints = arms_.joints();
+        parameters.joint_names = scene_.joint_names;
+        parameters.check_contact_normals = scene_.check_contact_normals;
         parameters.contacts = arms_.contact_points(model_.get(), data_.get(), scene_.object_body, friction);
         parameters.stiffness.diagonal() << Eigen::Vector3d::Constant(settings.translational_stiffness),
             Eigen::Vector3d::Constant(settings.rotational_stiffness);

@@ -418,6 +418,24 @@ TEST(SceneReader, NamesTheFieldOfEachProblem)
 
     expect_scene_error(head + object + R"("start": {"positions": [0, 0]}})", "start.positions");
     expect_scene_error(head + object + R"("start": {}})", "start");
+    // A start contact whose z (the inward normal) points out of the box is refused by the
+    // controller's rule and words before the IK would chase it (docs/control.md, "Contact frames");
+    // "check_contact_normals": false accepts it.
+    const std::string z_plus_x = R"("orientation": [0.70710678118654752, 0, 0.70710678118654752, 0])";
+    const std::string z_minus_x = R"("orientation": [0.70710678118654752, 0, -0.70710678118654752, 0])";
+    const std::string outward = R"("start": {"contacts": [{"position": [0.15, 0, 0], )" + z_plus_x +
+                                R"(}, {"position": [-0.15, 0, 0], )" + z_plus_x + "}]}";
+    expect_scene_error(head + object + outward + "}", "start.contacts[0].orientation");
+    try {
+        scenes::parse_scene(head + object + outward + "}", "bad.json", ".");
+    } catch (const example_common::ScenarioError& error) {
+        EXPECT_NE(std::string(error.what()).find("points out of the object"), std::string::npos) << error.what();
+    }
+    EXPECT_NO_THROW(scenes::parse_scene(head + object + outward + R"(, "check_contact_normals": false})", "opt-out.json", "."));
+    const std::string inward = R"("start": {"contacts": [{"position": [-0.15, 0, 0], )" + z_plus_x +
+                               R"(}, {"position": [0.15, 0, 0], )" + z_minus_x + "}]}";
+    EXPECT_NO_THROW(scenes::parse_scene(head + object + inward + "}", "good.json", "."));
+    expect_scene_error(head + object + inward + R"(, "check_contact_normals": 1})", "check_contact_normals");
     expect_scene_error(head + object + R"("start": {"contacts": [{"position": [0, 0, 0], "orientation": [1, 0, 0, 0]}]}})",
                        "start.contacts");
     expect_scene_error(head + object +
