@@ -243,6 +243,20 @@ struct NoFaults {
     }
 };
 
+/// The controller's parameters with the joints' torque limits as its own when they are finite and
+/// the parameters have none (the fault campaign's limit cells set their own): the controller clips
+/// the torque it computes, so the tick's status says so on the tick it clips (torque_saturated,
+/// docs/control.md, "Check data.status first"), and the plant-side clamp (saturate) then changes
+/// nothing.
+inline coopdyn::ControllerParameters<double> limited_parameters(const ExperimentSetup& setup)
+{
+    coopdyn::ControllerParameters<double> parameters = setup.parameters;
+    if (parameters.torque_limits.size() == 0 && setup.torque_limit.size() > 0 && setup.torque_limit.allFinite()) {
+        parameters.torque_limits = setup.torque_limit;
+    }
+    return parameters;
+}
+
 /// Clamps tau to the joints' torque limits; returns max_j |tau_j| / limit_j.
 template <typename Torque, typename Limit> double saturate(Torque& tau, const Limit& limit) noexcept
 {
@@ -350,7 +364,7 @@ ExperimentRunOf<K, Q> run_experiment_on(Plant& plant, const BoxScenario& scenari
                                         unsigned long long seed = 1, const std::function<void(double)>& progress = {},
                                         Faults&& faults = Faults{})
 {
-    const coopdyn::ControllerModel<double, ControllerK, ControllerQ> controller(setup.parameters);
+    const coopdyn::ControllerModel<double, ControllerK, ControllerQ> controller(limited_parameters(setup));
     coopdyn::ControllerData<double, ControllerK, ControllerQ> data(controller);
     coopdyn::ControllerInput<double, ControllerK, ControllerQ> input(controller);
     input.posture = setup.posture;

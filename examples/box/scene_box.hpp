@@ -126,6 +126,8 @@ inline ExperimentSetup make_scene_setup(const scenes::SceneWorld& world, const B
     }
     ExperimentSetup setup;
     setup.parameters.joints = Q;
+    setup.parameters.joint_names = world.scene().joint_names;
+    setup.parameters.check_contact_normals = world.scene().check_contact_normals;
     // The contacts' friction is the scenario's (apply_controller_settings), not the adapter's.
     setup.parameters.contacts = world.arms().contact_points(world.model(), world.data(), world.scene().object_body,
                                                             coopdyn::ContactFriction<double>{});

@@ -215,6 +215,46 @@ TEST(MujocoPlant, MeasuredPalmWrenchesGiveTheBoxsAcceleration)
     std::printf("Newton's second law of the box from the measured contact forces: %.3g N\n", worst);
 }
 
+TEST(MujocoPlant, ABoxTooHeavyForTheTorqueLimitsIsReportedOnTheTickItClips)
+{
+    // 20 kg put on the held box at 0.2 s: the LWR 4s' torque limits (lwr4.hpp) cannot hold it and
+    // the box falls. Until the statuses torque_saturated and slipping, every tick said ok (a user's
+    // xArm at 3.8 kg: the torque asked for reached 4.8e5x the limit). The status must say so on the
+    // tick the torque clips, read here independently as the sent torque's use of the limits
+    // (saturate in box_experiment.hpp, after the controller) reaching 1.
+    MujocoPlant plant(world(), PlantFriction{});
+    plant.set_box_mass(0.7);
+    const Grasp grasp = hold_grasp(world());
+    BoxScenario scenario = load_box_scenario(std::string(COOPDYN_BOX_DIR) + "/scenarios/add_mass.json");
+    scenario.duration = 1.2;
+    scenario.added_mass = AddedMass{0.2, 20.0, 2.0, 20.0};
+    const ExperimentRun run = run_experiment(plant, scenario, grasp);
+    long clipped = 0, before_load_not_ok = 0, clipped_ok = 0;
+    double first_clip = -1.0;
+    for (const TickLog& row : run.log) {
+        const bool clips = row.torque_use >= 1.0 - 1e-12;
+        if (clips && first_clip < 0.0) {
+            first_clip = row.time;
+            EXPECT_TRUE(row.status == coopdyn::ControlStatus::torque_saturated ||
+                        row.status == coopdyn::ControlStatus::slipping)
+                << coopdyn::to_string(row.status);
+        }
+        clipped += clips ? 1 : 0;
+        clipped_ok += clips && row.status == coopdyn::ControlStatus::ok ? 1 : 0;
+        before_load_not_ok += row.time < 0.2 && row.status != coopdyn::ControlStatus::ok ? 1 : 0;
+    }
+    EXPECT_GT(clipped, 0);
+    EXPECT_EQ(clipped_ok, 0);           // no clipped tick says ok
+    EXPECT_EQ(before_load_not_ok, 0);   // and the hold before the load does
+    EXPECT_GE(first_clip, 0.2);
+    // Once the box is falling the palms slip: the last logged tick reports it too.
+    ASSERT_FALSE(run.log.empty());
+    EXPECT_NE(run.log.back().status, coopdyn::ControlStatus::ok);
+    std::printf("20 kg added at 0.2 s: first clipped tick at %.3f s (%s), %ld clipped ticks, %s%.3f s, last status %s\n",
+                first_clip, first_clip >= 0.0 ? "reported" : "-", clipped, run.dropped ? "dropped at " : "held to ",
+                run.dropped ? run.dropped_at : run.log.back().time, coopdyn::to_string(run.log.back().status));
+}
+
 TEST(MujocoPlant, SmallestSqueezeThatHoldsIsCoulombsEstimate)
 {
     // MuJoCo's elliptic cone with mu = 0.5 holds a load W between two palms from a squeeze of
