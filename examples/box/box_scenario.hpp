@@ -50,11 +50,10 @@ struct ControllerSettings {
     double posture_damping = 4.0;            ///< D_n (N m s/rad)
     /// The contact QP's objective (docs/control.md, "The least squeeze"): the scenario's
     /// `objective` preset, then its `internal_weight`, `torque_weight`, `moment_weight`,
-    /// `squeeze_weight` if given. The shipped scenarios reproduce the paper's experiments with its
-    /// least squeeze torque L(20) plus the centring moment term (least_torque_centred, the
-    /// library's default until the least squeeze became it), so they keep it; with f_min = 70 N
-    /// the least squeeze presses the same 70 N at rest (docs/dual-arm-box.md).
-    coopdyn::SqueezeObjective<double> objective = coopdyn::SqueezeObjective<double>::least_torque_centred();
+    /// `squeeze_weight` if given; without them the library's default, the least squeeze (one
+    /// default for the library, the programs and the shipped scenarios; docs/dual-arm-box.md,
+    /// "The objective": with f_min = 70 N it presses the paper's 70 N at rest).
+    coopdyn::SqueezeObjective<double> objective{};
     /// Cut-off (Hz) of the first-order low-pass on the box's measured acceleration that feeds the
     /// external-wrench estimate L(7); 0 leaves the acceleration out (a quasi-static estimate).
     double acceleration_cutoff = 20.0;

@@ -61,7 +61,7 @@ inline coopdyn::SqueezeObjective<double> objective_preset(const JsonReader& read
     return Objective::least_squeeze();
 }
 
-/// The objective: the preset `objective` (default least_torque_centred, ControllerSettings), then
+/// The objective: the preset `objective` (default the library's, least_squeeze: ControllerSettings), then
 /// each weight given.
 inline void read_objective(const JsonReader& reader, const json& object, const std::string& path, ControllerSettings& c)
 {

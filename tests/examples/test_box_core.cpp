@@ -105,9 +105,19 @@ TEST(BoxScenarioLoader, ValuesOutOfTheCommandLinesRangeAreRefused)
 TEST(BoxScenarioLoader, ObjectivePresetsAndWeights)
 {
     const std::string hold = example_common::read_text_file(std::string(COOPDYN_BOX_DIR) + "/scenarios/hold.json");
-    // The shipped scenario's objective: the preset and its moment weight written out.
-    const std::string shipped = "\"objective\": \"least_torque_centred\",\n    \"moment_weight\": 10000.0";
+    // The shipped scenario names no preset: the library's default, the least squeeze (one default,
+    // docs/dual-arm-box.md, "The objective"), with its moment weight written out.
+    const std::string shipped = "\"moment_weight\": 10000.0";
     ASSERT_NE(hold.find(shipped), std::string::npos);
+    ASSERT_EQ(hold.find("\"objective\""), std::string::npos);
+    {
+        const BoxScenario scenario = parse_box_scenario(hold, "hold.json");
+        const coopdyn::SqueezeObjective<double> library{};
+        EXPECT_EQ(scenario.controller.objective.internal_weight, library.internal_weight);
+        EXPECT_EQ(scenario.controller.objective.torque_weight, library.torque_weight);
+        EXPECT_EQ(scenario.controller.objective.moment_weight, library.moment_weight);
+        EXPECT_EQ(scenario.controller.objective.squeeze_weight, library.squeeze_weight);
+    }
     const auto edited = [&](const std::string& objective) {
         std::string text = hold;
         return text.replace(text.find(shipped), shipped.size(), objective);
