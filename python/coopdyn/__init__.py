@@ -11,7 +11,8 @@ from ._coopdyn import Error, InvalidArgument, InvalidModel  # noqa: F401
 from . import _parameters, experiments  # noqa: F401
 
 try:  # built where MuJoCo is found (docs/python.md, "The MuJoCo adapter")
-    from ._mujoco import MujocoArms  # noqa: F401
+    from ._mujoco import (InverseKinematicsOptions, InverseKinematicsResult,  # noqa: F401
+                          InverseKinematicsStatus, MujocoArms, MujocoContactWrenches)
 except ModuleNotFoundError as error:
     if error.name != __name__ + "._mujoco":
         raise

@@ -59,7 +59,7 @@ void set_state(OwnedArms& self, const py::handle& qpos, const py::handle& qvel)
         const Vector v = checked(qvel, "MujocoArms.set_state", "qvel", model->nv);
         std::copy(v.data(), v.data() + model->nv, self.data()->qvel);
     }
-    mj_forward(model, self.data());
+    self.forward();  // mj_forward, and the contact forces it solved for
 }
 
 /// An Eigen matrix or vector of the given size that `read` fills, returned as a new numpy array.
@@ -187,7 +187,7 @@ void bind_arms(py::module_& module)
                 }
                 mj_resetDataKeyframe(self.model(), self.data(), key);
             }
-            mj_forward(self.model(), self.data());
+            self.forward();
         },
         py::arg("keyframe") = "", "The initial state (qpos0), or the named keyframe's; then mj_forward.");
     arms.def(
