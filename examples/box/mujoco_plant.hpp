@@ -92,10 +92,7 @@ public:
         for (int j = 0; j < joints; ++j) {
             data_->qfrc_applied[j] = tau(j);
         }
-        mjtNum* applied = data_->xfrc_applied + 6 * world_.box_body();
-        for (int k = 0; k < 6; ++k) {
-            applied[k] = box_wrench(k);
-        }
+        coopdyn::mujoco_set_applied_wrench(model_.get(), data_.get(), world_.box_body(), box_wrench);
         mj_step2(model_.get(), data_.get());
         const Eigen::Matrix3d rotation = box_orientation_.toRotationMatrix();
         const mjtNum* acceleration = data_->qacc + joints;
@@ -131,32 +128,15 @@ public:
     }
 
 private:
+    /// The library's measurement (MujocoArms::read_contact_wrenches: each palm's MuJoCo contacts
+    /// with the box, mj_contactForce turned to {w}, the moments about the palm's contact site).
     void measure_contacts() noexcept
     {
-        for (std::size_t palm = 0; palm < palms; ++palm) {
-            measured_[palm].setZero();
-            contact_points_[palm] = 0;
-        }
-        for (int c = 0; c < data_->ncon; ++c) {
-            const mjContact& contact = data_->contact[c];
-            for (int palm = 0; palm < palms; ++palm) {
-                if (contact.geom1 != world_.palm_geom(palm) || contact.geom2 != world_.box_geom()) {
-                    continue;
-                }
-                // mj_contactForce: in the contact frame (rows of contact.frame: the normal from geom1
-                // to geom2, then the tangents), the force geom1 (the palm) applies to geom2 (the box).
-                std::array<mjtNum, 6> local{};
-                mj_contactForce(model_.get(), data_.get(), c, local.data());
-                const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> frame(contact.frame);
-                const Eigen::Vector3d force = frame.transpose() * Eigen::Vector3d(local[0], local[1], local[2]);
-                const Eigen::Vector3d torsion = frame.row(0).transpose() * local[3];
-                const auto index = static_cast<std::size_t>(palm);
-                const Eigen::Vector3d arm =
-                    Eigen::Vector3d(contact.pos[0], contact.pos[1], contact.pos[2]) - terms_.palm_position[index];
-                measured_[index].head<3>() += force;
-                measured_[index].tail<3>() += arm.cross(force) + torsion;
-                ++contact_points_[index];
-            }
+        world_.arms().read_contact_wrenches(model_.get(), data_.get(), world_.box_body(), contacts_);
+        for (int palm = 0; palm < palms; ++palm) {
+            const auto index = static_cast<std::size_t>(palm);
+            measured_[index] = contacts_.world.col(palm);
+            contact_points_[index] = contacts_.points(palm);
         }
     }
 
@@ -169,6 +149,7 @@ private:
     Eigen::Quaterniond box_orientation_ = Eigen::Quaterniond::Identity();
     Vector6d box_twist_ = Vector6d::Zero();
     Vector6d box_acceleration_ = Vector6d::Zero();
+    coopdyn::MujocoContactWrenches<palms> contacts_;
     std::array<Vector6d, palms> measured_{};
     std::array<int, palms> contact_points_{};
 };

@@ -62,9 +62,7 @@ class MujocoScenePlant {
 public:
     explicit MujocoScenePlant(SceneWorld& world)
         : world_(world),
-          normal_force_(static_cast<std::size_t>(world.arms().arms()), 0.0),
-          contact_points_(static_cast<std::size_t>(world.arms().arms()), 0),
-          palm_position_(static_cast<std::size_t>(world.arms().arms()), Eigen::Vector3d::Zero()),
+          contacts_(world.arms().arms()),
           measured_(static_cast<std::size_t>(world.arms().arms()), coopdyn::Vector6<double>::Zero())
     {
     }
@@ -79,9 +77,6 @@ public:
         input.object = coopdyn::mujoco_object_state(world_.model(), world_.data(), world_.object_body());
         input.object_acceleration = acceleration_;
         orientation_ = input.object.pose.orientation;
-        for (std::size_t i = 0; i < palm_position_.size(); ++i) {  // the measured moments are about these
-            palm_position_[i] = contact_pose(static_cast<Eigen::Index>(i)).position;
-        }
     }
     /// Contact i's frame at the tick's start (the state the controller saw).
     coopdyn::Pose<double> contact_pose(Eigen::Index i) const { return world_.arms().contact_pose(world_.data(), i); }
@@ -95,19 +90,17 @@ public:
         for (Eigen::Index j = 0; j < world_.arms().joints(); ++j) {
             data->qfrc_applied[world_.arms().dof_address(j)] = tau(j);
         }
-        mjtNum* applied = data->xfrc_applied + 6 * world_.object_body();
-        for (int k = 0; k < 6; ++k) {
-            applied[k] = object_wrench(k);
-        }
+        coopdyn::mujoco_set_applied_wrench(world_.model(), data, world_.object_body(), object_wrench);
         mj_step2(world_.model(), data);
         // The free joint's qacc: linear in {w}, angular in the body frame.
         const mjtNum* qacc = data->qacc + world_.object_dof();
         acceleration_ << qacc[0], qacc[1], qacc[2], orientation_ * Eigen::Vector3d(qacc[3], qacc[4], qacc[5]);
         measure_contacts();
     }
-    /// Palm i's normal force on the object (N) and its MuJoCo contact points, in the last step.
-    double normal_force(Eigen::Index i) const noexcept { return normal_force_[static_cast<std::size_t>(i)]; }
-    int contact_points(Eigen::Index i) const noexcept { return contact_points_[static_cast<std::size_t>(i)]; }
+    /// Palm i's normal force on the object (N, along MuJoCo's contact normals) and its MuJoCo contact
+    /// points, in the last step.
+    double normal_force(Eigen::Index i) const noexcept { return contacts_.normal_forces(i); }
+    int contact_points(Eigen::Index i) const noexcept { return contacts_.points(i); }
     /// Palm i's whole wrench [f; t] on the object about its contact site (where the controller saw
     /// it), {w}, summed over its MuJoCo contacts in the last step.
     const coopdyn::Vector6<double>& measured_contact_wrench(Eigen::Index i) const noexcept
@@ -134,48 +127,20 @@ public:
     }
 
 private:
+    /// The library's measurement (MujocoArms::read_contact_wrenches: each palm's MuJoCo contacts
+    /// with the object in either geom order, mj_contactForce turned to {w} and to the palm's force
+    /// on the object, the moments about the palm's contact site where the controller saw it; the
+    /// step leaves the sites' poses as they were).
     void measure_contacts() noexcept
     {
-        std::fill(normal_force_.begin(), normal_force_.end(), 0.0);
-        std::fill(contact_points_.begin(), contact_points_.end(), 0);
-        std::fill(measured_.begin(), measured_.end(), coopdyn::Vector6<double>::Zero());
-        const mjData* data = world_.data();
-        for (int c = 0; c < data->ncon; ++c) {
-            const mjContact& contact = data->contact[c];
-            for (Eigen::Index i = 0; i < world_.arms().arms(); ++i) {
-                const bool palm_first = contact.geom1 == world_.palm_geom(i) && contact.geom2 == world_.object_geom(i);
-                const bool ours =
-                    palm_first || (contact.geom2 == world_.palm_geom(i) && contact.geom1 == world_.object_geom(i));
-                if (ours) {
-                    add_contact(contact, c, palm_first, static_cast<std::size_t>(i));
-                }
-            }
+        world_.arms().read_contact_wrenches(world_.model(), world_.data(), world_.object_body(), contacts_);
+        for (std::size_t i = 0; i < measured_.size(); ++i) {
+            measured_[i] = contacts_.world.col(static_cast<Eigen::Index>(i));
         }
     }
 
-    /// mj_contactForce: in the contact frame (rows of contact.frame: the normal from geom1 to geom2,
-    /// then the tangents), geom1's force on geom2; turned to {w} and to the palm's force on the
-    /// object, its moment about the palm's contact site plus the torsion about the normal.
-    void add_contact(const mjContact& contact, int index, bool palm_first, std::size_t palm) noexcept
-    {
-        mjtNum local[6];
-        mj_contactForce(world_.model(), world_.data(), index, local);  // local[0]: the normal force, >= 0
-        normal_force_[palm] += local[0];
-        ++contact_points_[palm];
-        const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> frame(contact.frame);
-        const double sign = palm_first ? 1.0 : -1.0;
-        const Eigen::Vector3d force = sign * (frame.transpose() * Eigen::Vector3d(local[0], local[1], local[2]));
-        const Eigen::Vector3d torsion = sign * local[3] * frame.row(0).transpose();
-        const Eigen::Vector3d arm =
-            Eigen::Vector3d(contact.pos[0], contact.pos[1], contact.pos[2]) - palm_position_[palm];
-        measured_[palm].head<3>() += force;
-        measured_[palm].tail<3>() += arm.cross(force) + torsion;
-    }
-
     SceneWorld& world_;
-    std::vector<double> normal_force_;
-    std::vector<int> contact_points_;
-    std::vector<Eigen::Vector3d> palm_position_;          ///< contact sites at the tick's start, {w}
+    coopdyn::MujocoContactWrenches<> contacts_;          ///< the palms' MuJoCo contacts in the last step
     std::vector<coopdyn::Vector6<double>> measured_;     ///< palms' wrenches on the object
     coopdyn::Vector6<double> acceleration_ = coopdyn::Vector6<double>::Zero();
     Eigen::Quaterniond orientation_ = Eigen::Quaterniond::Identity();
