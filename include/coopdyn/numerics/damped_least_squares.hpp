@@ -14,7 +14,6 @@
 
 #include "coopdyn/config.hpp"
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <cmath>
@@ -54,18 +53,71 @@ struct DampedLeastSquaresResult {
     bool converged() const noexcept { return status == DampedLeastSquaresStatus::converged; }
 };
 
-/// \brief One step dx = J^T (J J^T + damping^2 I)^-1 e. J is m x n, e m, step n.
+/// \brief One step dx = J^T (J J^T + damping^2 I)^-1 e. J is m x n, e m, step n. The step is zero
+/// when J J^T + damping^2 I is not numerically positive definite (damping 0 and a rank-deficient J,
+/// or a non-finite J): damped_least_squares then reports the iteration stalled.
+///
+/// Plain loops: the lower triangle of the Gram matrix, a left-looking Cholesky factorisation and
+/// two substitutions, as FixedLlt (fixed_llt.hpp) but at run-time sizes. Eigen's operator* and LLT
+/// on dynamic matrices would compile its GEMM kernels, blocked Cholesky and triangular solvers into
+/// every file that calls the inverse kinematics, for a 12 x 14 problem solved a few times at start
+/// (docs/performance.md, "Compile time and CI").
 template <typename DerivedJ, typename DerivedE, typename DerivedStep>
 void damped_least_squares_step(const Eigen::MatrixBase<DerivedJ>& jacobian, const Eigen::MatrixBase<DerivedE>& error,
                                double damping, const Eigen::MatrixBase<DerivedStep>& step_out)
 {
+    auto& step = const_cast<Eigen::MatrixBase<DerivedStep>&>(step_out);
+    const Index m = jacobian.rows();
+    const Index n = jacobian.cols();
+    step.derived().resize(n);
     // J J^T + lambda^2 I is symmetric positive definite for lambda != 0 (and for a full-row-rank J):
     // Cholesky. The m x m form (not (J^T J + lambda^2 I)^-1 J^T e) because the tasks here have at
-    // most as many rows as joints (6K <= Q).
-    Eigen::MatrixXd gram = jacobian * jacobian.transpose();
-    gram.diagonal().array() += damping * damping;
-    const Eigen::VectorXd weights = gram.llt().solve(error);
-    const_cast<Eigen::MatrixBase<DerivedStep>&>(step_out) = jacobian.transpose() * weights;
+    // most as many rows as joints (6K <= Q). Column j of L needs only the finished columns k < j:
+    // l_jj = sqrt(g_jj - sum_k l_jk^2), l_ij = (g_ij - sum_k l_ik l_jk) / l_jj.
+    Eigen::MatrixXd factor(m, m);
+    for (Index j = 0; j < m; ++j) {
+        for (Index i = j; i < m; ++i) {
+            double gram = i == j ? damping * damping : 0.0;
+            for (Index k = 0; k < n; ++k) {
+                gram += jacobian(i, k) * jacobian(j, k);
+            }
+            for (Index k = 0; k < j; ++k) {
+                gram -= factor(i, k) * factor(j, k);
+            }
+            if (i == j) {
+                if (!(gram > 0.0)) {
+                    step.setZero();
+                    return;
+                }
+                factor(j, j) = std::sqrt(gram);
+            } else {
+                factor(i, j) = gram / factor(j, j);
+            }
+        }
+    }
+    // weights = (L L^T)^-1 e: L y = e forward, then L^T weights = y backward.
+    Eigen::VectorXd weights(m);
+    for (Index i = 0; i < m; ++i) {
+        double value = error(i);
+        for (Index k = 0; k < i; ++k) {
+            value -= factor(i, k) * weights(k);
+        }
+        weights(i) = value / factor(i, i);
+    }
+    for (Index i = m - 1; i >= 0; --i) {
+        double value = weights(i);
+        for (Index k = i + 1; k < m; ++k) {
+            value -= factor(k, i) * weights(k);
+        }
+        weights(i) = value / factor(i, i);
+    }
+    for (Index c = 0; c < n; ++c) {
+        double value = 0.0;
+        for (Index i = 0; i < m; ++i) {
+            value += jacobian(i, c) * weights(i);
+        }
+        step(c) = value;
+    }
 }
 
 /// \brief Solves e(x) = 0 from x by damped least squares.
