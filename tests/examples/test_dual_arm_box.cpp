@@ -386,7 +386,7 @@ TEST(DualArmBoxInput, MalformedScenariosFailWithFileJsonPathAndProblem)
         {"misspelt.json", replaced("\"push\": {", "\"pushed\": {"), "misspelt.json: pushed: unknown field"},
         {"name.json", replaced("\"name\": \"push\"", "\"name\": \"../escaped\""), "name.json: name:"},
         {"type.json", replaced("\"box_mass\": 0.7", "\"box_mass\": \"heavy\""), "type.json: box_mass: expected a number"},
-        {"objective.json", replaced("\"moment_weight\": 10000.0", "\"torque_weight\": 0, \"squeeze_weight\": 0"),
+        {"objective.json", replaced("\"moment_weight\": 10000.0", "\"internal_weight\": 0, \"squeeze_weight\": 0"),
          "objective.json: controller.squeeze_weight: must be positive when torque_weight is 0"},
         // The ranges of --friction and --duration hold for the scenario's values too.
         {"friction.json", replaced("\"friction\": 0.2", "\"friction\": 100"),
